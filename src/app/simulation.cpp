@@ -1,0 +1,205 @@
+#include "app/simulation.hpp"
+
+#include <fmt/format.h>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "app/energy.hpp"
+#include "core/error.hpp"
+#include "integrators/integrator.hpp"
+#include "io/atomic_file.hpp"
+#include "io/probes_csv.hpp"
+#include "io/vtu_writer.hpp"
+#include "model/model.hpp"
+#include "scene/scene.hpp"
+
+namespace fissure {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Index of the first particle whose position or velocity is not finite, or −1.
+int first_nonfinite(const State& s) {
+  const int n = static_cast<int>(s.position.size() / 3);
+  int first = n;
+#pragma omp parallel for reduction(min : first) schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(s.position[3 * i + k]) || !std::isfinite(s.velocity[3 * i + k]))
+        first = std::min(first, i);
+  return first == n ? -1 : first;
+}
+
+void write_summary(const std::string& path, const RunSummary& s) {
+  write_atomically(path, [&](std::ostream& out) {
+    out << fmt::format(
+        "{{\n  \"status\": \"{}\",\n  \"particles\": {},\n  \"bonds\": {},\n  \"steps\": {},\n"
+        "  \"dt\": {:.9g},\n  \"stable_dt\": {:.9g},\n  \"wall_seconds\": {:.6g},\n"
+        "  \"seconds_per_step\": {:.6g},\n  \"setup_seconds\": {:.6g},\n  \"peak_rss_mb\": {:.6g},\n"
+        "  \"energy_drift\": {:.6g}\n}}\n",
+        s.status, s.particles, s.bonds, s.steps, s.dt, s.stable_dt, s.wall_seconds,
+        s.seconds_per_step, s.setup_seconds, s.peak_rss_mb, s.energy_drift);
+  });
+}
+
+class Simulation {
+ public:
+  Simulation(const Config& config, const RunOptions& options);
+  RunSummary run();
+
+ private:
+  void write_frame();
+  void sample_energy();
+  void report_progress(Clock::time_point start, bool final);
+
+  const Config& config_;
+  RunOptions options_;
+  Clock::time_point setup_start_;
+  std::unique_ptr<Integrator> integrator_;
+  Scene scene_;
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<Dynamics> dynamics_;
+  std::unique_ptr<ProbesCsv> probes_;
+  std::unique_ptr<PvdIndex> pvd_;
+  State state_;
+  RunSummary summary_;
+  int frame_ = 0;
+  // Energy ledger for energy_drift: E = kinetic + elastic + gravitational.
+  double initial_energy_ = 0, energy_scale_ = 0, constraint_work_ = 0, damping_loss_ = 0;
+  double last_energy_ = 0, last_sample_time_ = -1;
+};
+
+Simulation::Simulation(const Config& config, const RunOptions& options)
+    : config_(config), options_(options), setup_start_(Clock::now()) {
+  integrator_ = make_integrator(config.integrator.type, config.file);
+  scene_ = build_scene(config);
+  model_ = make_model(scene_);
+  dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
+  summary_.particles = scene_.particles.count();
+  summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
+  summary_.stable_dt = model_->stable_time_step();
+  summary_.dt = config.time.dt_auto ? config.time.safety * summary_.stable_dt : config.time.dt;
+  if (!config.time.dt_auto && config.time.dt > summary_.stable_dt)
+    fmt::print(stderr,
+               "warning: {}: time.dt = {:.3g} s exceeds the stable estimate {:.3g} s of the "
+               "explicit step; the run may blow up\n",
+               config.file, config.time.dt, summary_.stable_dt);
+  std::filesystem::create_directories(config.output.dir);
+  probes_ = std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles);
+  pvd_ = std::make_unique<PvdIndex>(config.output.dir + "/particles.pvd");
+  state_.position = scene_.particles.reference;
+  state_.velocity = scene_.particles.velocity;
+  dynamics_->constrain_velocity(0.0, state_.velocity.data());
+}
+
+void Simulation::write_frame() {
+  const int n = scene_.particles.count();
+  std::vector<double> displacement(3 * n), damage(n, 0.0);
+  for (int k = 0; k < 3 * n; ++k) displacement[k] = state_.position[k] - scene_.particles.reference[k];
+  const std::string file = fmt::format("particles_{:06d}.vtu", frame_++);
+  write_particles_vtu(config_.output.dir + "/" + file, state_.position,
+                      {{"displacement", 3, &displacement},
+                       {"velocity", 3, &state_.velocity},
+                       {"damage", 1, &damage},
+                       {"dilatation", 1, &model_->dilatation()}},
+                      &scene_.particles.body);
+  pvd_->add(state_.time, file);
+}
+
+void Simulation::sample_energy() {
+  const double kinetic = kinetic_energy(scene_.particles.mass, state_.velocity);
+  const double elastic = model_->elastic_energy(state_.position.data());
+  const double total =
+      kinetic + elastic + gravitational_energy(scene_.particles.mass, state_.position, config_.gravity);
+  if (summary_.steps == 0) initial_energy_ = total;
+  energy_scale_ = std::max(energy_scale_, kinetic + std::abs(elastic));
+  last_energy_ = total - initial_energy_ - constraint_work_ + damping_loss_;
+  probes_->write_row(state_.time, kinetic, elastic, state_.position);
+  last_sample_time_ = state_.time;
+}
+
+void Simulation::report_progress(Clock::time_point start, bool final) {
+  const double elapsed = seconds_since(start);
+  const double rate = summary_.steps / std::max(elapsed, 1e-9);
+  const double remaining = (config_.time.end - state_.time) / summary_.dt / std::max(rate, 1e-9);
+  fmt::print(stderr, "\rt = {:.4g} / {:.4g} s   {:.0f} steps/s   ETA {:.0f} s   {}",
+             state_.time, config_.time.end, rate, std::max(remaining, 0.0), final ? "\n" : "");
+}
+
+RunSummary Simulation::run() {
+  const double dt = summary_.dt;
+  const long steps = static_cast<long>(std::ceil(config_.time.end / dt - 1e-9));
+  summary_.setup_seconds = seconds_since(setup_start_);
+  double next_frame = 0, next_probe = 0;
+  const double tolerance = 1e-9 * dt;
+  auto output_due = [&] {
+    if (state_.time + tolerance >= next_probe) {
+      sample_energy();
+      next_probe += config_.output.probe_every;
+    }
+    if (state_.time + tolerance >= next_frame) {
+      write_frame();
+      next_frame += config_.output.every;
+    }
+  };
+  output_due();
+  const auto start = Clock::now();
+  auto last_report = start;
+  double stepping_seconds = 0;
+  for (long s = 0; s < steps; ++s) {
+    const auto step_start = Clock::now();
+    integrator_->step(*dynamics_, state_, dt);
+    constraint_work_ += dt * dynamics_->constraint_power();
+    if (config_.damping > 0)
+      damping_loss_ += dt * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
+    ++summary_.steps;
+    if (const int bad = first_nonfinite(state_); bad >= 0) {
+      summary_.status = "nonfinite";
+      summary_.wall_seconds = seconds_since(setup_start_);
+      summary_.peak_rss_mb = peak_rss_mb();
+      write_summary(config_.output.dir + "/summary.json", summary_);
+      throw RunError(fmt::format(
+          "state became non-finite at step {} (t = {:.6g} s), first at particle {}; dt = {:.3g} s, "
+          "stable estimate {:.3g} s. Outputs up to this point are kept in {}",
+          summary_.steps, state_.time, bad, dt, summary_.stable_dt, config_.output.dir));
+    }
+    stepping_seconds += seconds_since(step_start);
+    output_due();
+    if (options_.progress && seconds_since(last_report) > 0.5) {
+      report_progress(start, false);
+      last_report = Clock::now();
+    }
+  }
+  if (options_.progress) report_progress(start, true);
+  if (last_sample_time_ < state_.time) sample_energy();
+  summary_.energy_drift = energy_scale_ > 0 ? last_energy_ / energy_scale_ : 0.0;
+  summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
+  summary_.wall_seconds = seconds_since(setup_start_);
+  summary_.peak_rss_mb = peak_rss_mb();
+  write_summary(config_.output.dir + "/summary.json", summary_);
+  return summary_;
+}
+
+}  // namespace
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+RunSummary run_simulation(const Config& config, const RunOptions& options) {
+  Simulation simulation(config, options);
+  return simulation.run();
+}
+
+}  // namespace fissure

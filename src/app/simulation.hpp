@@ -1,0 +1,33 @@
+#pragma once
+// The shared run loop: integrator step, checks, output as it goes, summary at the end.
+#include <string>
+
+#include "scene/config.hpp"
+
+namespace fissure {
+
+struct RunOptions {
+  bool progress = false;  // a progress line on stderr
+};
+
+struct RunSummary {
+  long particles = 0;
+  long bonds = 0;  // each pair counted once
+  long steps = 0;
+  double dt = 0;
+  double stable_dt = 0;
+  double wall_seconds = 0;
+  double seconds_per_step = 0;
+  double setup_seconds = 0;
+  double peak_rss_mb = 0;
+  double energy_drift = 0;
+  std::string status = "completed";
+};
+
+// Runs the scene into config.output.dir. Throws InputError for unusable input and RunError when
+// the state turns non-finite (after writing summary.json with the failure).
+RunSummary run_simulation(const Config& config, const RunOptions& options);
+
+double peak_rss_mb();
+
+}  // namespace fissure

@@ -1,0 +1,42 @@
+#pragma once
+// The equation of motion the integrators advance: M ÿ = F_int(y) + M g − c M ẏ (Eq 2 with
+// gravity and mass-proportional damping), with kinematic constraints on regions.
+#include <vector>
+
+#include "model/model.hpp"
+#include "scene/scene.hpp"
+
+namespace fissure {
+
+class Dynamics {
+ public:
+  Dynamics(const Scene& scene, Model& model);
+
+  int particle_count() const { return static_cast<int>(mass_.size()); }
+  Model& model() { return model_; }
+  const std::vector<double>& mass() const { return mass_; }
+
+  // a = F_int(y)/m + g − c v, zero where a constraint holds the particle at time t.
+  // Also records the power the constraints put in (constraint_power()).
+  void acceleration(double t, const double* y, const double* v, double* a);
+  // Sets the velocity of every particle held by a constraint active at time t.
+  void constrain_velocity(double t, double* v) const;
+  // Power of the constraint reactions at the last acceleration() call [W].
+  double constraint_power() const { return constraint_power_; }
+
+ private:
+  struct Held {
+    std::vector<int> particles;
+    double velocity[3];
+    double release_at;
+  };
+  Model& model_;
+  std::vector<double> mass_;
+  double gravity_[3];
+  double damping_;
+  std::vector<Held> held_;
+  std::vector<double> force_;
+  double constraint_power_ = 0;
+};
+
+}  // namespace fissure

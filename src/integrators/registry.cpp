@@ -1,0 +1,46 @@
+#include <fmt/format.h>
+
+#include <functional>
+#include <utility>
+
+#include "core/error.hpp"
+#include "integrators/integrator.hpp"
+#include "integrators/symplectic_euler.hpp"
+#include "integrators/velocity_verlet.hpp"
+#include "scene/yaml_reader.hpp"
+
+namespace fissure {
+
+namespace {
+
+using Factory = std::function<std::unique_ptr<Integrator>()>;
+
+const std::vector<std::pair<std::string, Factory>>& registry() {
+  static const std::vector<std::pair<std::string, Factory>> entries = {
+      {"symplectic_euler", [] { return std::make_unique<SymplecticEuler>(); }},
+      {"velocity_verlet", [] { return std::make_unique<VelocityVerlet>(); }},
+  };
+  return entries;
+}
+
+}  // namespace
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, factory] : registry()) names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& type, const std::string& file) {
+  for (const auto& [name, factory] : registry())
+    if (name == type) return factory();
+  const auto names = integrator_names();
+  const std::string hint = nearest(type, names);
+  std::string valid;
+  for (const auto& n : names) valid += (valid.empty() ? "" : ", ") + n;
+  throw InputError(file, "integrator.type",
+                   fmt::format("unknown integrator '{}'{} (valid: {})", type,
+                               hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), valid));
+}
+
+}  // namespace fissure

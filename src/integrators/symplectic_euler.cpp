@@ -1,0 +1,20 @@
+#include "integrators/symplectic_euler.hpp"
+
+namespace fissure {
+
+void SymplecticEuler::step(Dynamics& dynamics, State& state, double dt) {
+  auto& y = state.position;
+  auto& v = state.velocity;
+  acceleration_.resize(y.size());
+  dynamics.acceleration(state.time, y.data(), v.data(), acceleration_.data());
+  const double t_end = state.time + dt;
+  const std::size_t n = y.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) v[k] += dt * acceleration_[k];
+  dynamics.constrain_velocity(state.time, v.data());
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) y[k] += dt * v[k];
+  state.time = t_end;
+}
+
+}  // namespace fissure

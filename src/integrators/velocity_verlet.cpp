@@ -1,0 +1,29 @@
+#include "integrators/velocity_verlet.hpp"
+
+namespace fissure {
+
+void VelocityVerlet::step(Dynamics& dynamics, State& state, double dt) {
+  auto& y = state.position;
+  auto& v = state.velocity;
+  const std::size_t n = y.size();
+  if (!have_acceleration_ || acceleration_.size() != n) {
+    acceleration_.resize(n);
+    dynamics.acceleration(state.time, y.data(), v.data(), acceleration_.data());
+    have_acceleration_ = true;
+  }
+  const double half = 0.5 * dt;
+  // v_{n+½} = v_n + Δt/2 a_n; y_{n+1} = y_n + Δt v_{n+½}
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) {
+    v[k] += half * acceleration_[k];
+    y[k] += dt * v[k];
+  }
+  state.time += dt;
+  // v_{n+1} = v_{n+½} + Δt/2 a_{n+1}
+  dynamics.acceleration(state.time, y.data(), v.data(), acceleration_.data());
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) v[k] += half * acceleration_[k];
+  dynamics.constrain_velocity(state.time, v.data());
+}
+
+}  // namespace fissure

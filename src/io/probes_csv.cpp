@@ -1,0 +1,48 @@
+#include "io/probes_csv.hpp"
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace fissure {
+
+ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles)
+    : particles_(particles) {
+  for (std::size_t p = 0; p < config.probes.size(); ++p) {
+    std::vector<int> members;
+    for (int i = 0; i < particles.count(); ++i)
+      if (config.probes[p].region.contains(&particles.reference[3 * i])) members.push_back(i);
+    if (members.empty())
+      throw InputError(config.file, fmt::format("probes[{}].region", p),
+                       fmt::format("probe '{}' contains no particle", config.probes[p].name));
+    members_.push_back(std::move(members));
+  }
+  out_.open(path, std::ios::trunc);
+  if (!out_) throw RunError("cannot write " + path);
+  out_ << "time,kinetic_energy,elastic_energy";
+  for (const auto& probe : config.probes)
+    for (const char* column : {"pos_x", "pos_y", "pos_z", "disp_x", "disp_y", "disp_z"})
+      out_ << ',' << probe.name << '.' << column;
+  out_ << '\n';
+  out_.flush();
+}
+
+void ProbesCsv::write_row(double time, double kinetic_energy, double elastic_energy,
+                          const std::vector<double>& position) {
+  out_ << fmt::format("{:.9g},{:.9g},{:.9g}", time, kinetic_energy, elastic_energy);
+  for (const auto& members : members_) {
+    double pos[3] = {0, 0, 0}, disp[3] = {0, 0, 0};
+    for (int i : members)
+      for (int k = 0; k < 3; ++k) {
+        pos[k] += position[3 * i + k];
+        disp[k] += position[3 * i + k] - particles_.reference[3 * i + k];
+      }
+    const double inv = 1.0 / static_cast<double>(members.size());
+    for (double v : pos) out_ << fmt::format(",{:.9g}", v * inv);
+    for (double v : disp) out_ << fmt::format(",{:.9g}", v * inv);
+  }
+  out_ << '\n';
+  out_.flush();
+}
+
+}  // namespace fissure

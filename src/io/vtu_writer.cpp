@@ -1,0 +1,77 @@
+#include "io/vtu_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <ostream>
+
+#include "io/atomic_file.hpp"
+
+namespace fissure {
+
+namespace {
+
+struct Block {
+  const void* data;
+  std::uint64_t bytes;
+};
+
+}  // namespace
+
+void write_particles_vtu(const std::string& path, const std::vector<double>& points,
+                         const std::vector<PointField>& fields, const std::vector<int>* body_id) {
+  const std::size_t n = points.size() / 3;
+  std::vector<std::int32_t> connectivity(n), offsets(n);
+  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
+  for (std::size_t i = 0; i < n; ++i) {
+    connectivity[i] = static_cast<std::int32_t>(i);
+    offsets[i] = static_cast<std::int32_t>(i + 1);
+  }
+  std::vector<Block> blocks;
+  std::uint64_t offset = 0;
+  std::string header = fmt::format(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n"
+      "<Piece NumberOfPoints=\"{0}\" NumberOfCells=\"{0}\">\n",
+      n);
+  auto array = [&](const char* type, const std::string& name, int components, const void* data,
+                   std::uint64_t bytes) {
+    header += fmt::format(
+        "<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" "
+        "offset=\"{}\"/>\n",
+        type, name, components, offset);
+    blocks.push_back({data, bytes});
+    offset += sizeof(std::uint64_t) + bytes;
+  };
+  header += "<Points>\n";
+  array("Float64", "position", 3, points.data(), points.size() * sizeof(double));
+  header += "</Points>\n<Cells>\n";
+  array("Int32", "connectivity", 1, connectivity.data(), n * sizeof(std::int32_t));
+  array("Int32", "offsets", 1, offsets.data(), n * sizeof(std::int32_t));
+  array("UInt8", "types", 1, types.data(), n);
+  header += "</Cells>\n<PointData>\n";
+  for (const auto& f : fields)
+    array("Float64", f.name, f.components, f.values->data(), f.values->size() * sizeof(double));
+  if (body_id) array("Int32", "body", 1, body_id->data(), body_id->size() * sizeof(int));
+  header += "</PointData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  write_atomically(path, [&](std::ostream& out) {
+    out << header;
+    for (const auto& b : blocks) {
+      out.write(reinterpret_cast<const char*>(&b.bytes), sizeof(b.bytes));
+      out.write(static_cast<const char*>(b.data), static_cast<std::streamsize>(b.bytes));
+    }
+    out << "\n</AppendedData>\n</VTKFile>\n";
+  });
+}
+
+void PvdIndex::add(double time, const std::string& relative_file) {
+  frames_.emplace_back(time, relative_file);
+  write_atomically(path_, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+    for (const auto& [t, file] : frames_)
+      out << fmt::format("<DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", t, file);
+    out << "</Collection>\n</VTKFile>\n";
+  });
+}
+
+}  // namespace fissure

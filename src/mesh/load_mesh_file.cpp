@@ -1,0 +1,22 @@
+// load_mesh_file: TetGen files are read as they are, surfaces are tetrahedralized.
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "mesh/geometry.hpp"
+#include "mesh/mesh_util.hpp"
+
+namespace fissure {
+
+TetMesh load_mesh_file(const std::string& path, double edge_length) {
+  const std::string ext = mesh_detail::lowercase_extension(path);
+  if (ext == ".node" || ext == ".ele") return read_tetgen(path);
+  if (ext == ".obj" || ext == ".stl" || ext == ".off" || ext == ".ply") {
+    return tetrahedralize_surface(read_surface(path), edge_length, path);
+  }
+  throw InputError(path, "",
+                   fmt::format("unsupported mesh file extension '{}' (supported: .obj, .stl, .off, "
+                               ".ply, .node, .ele)",
+                               ext));
+}
+
+}  // namespace fissure

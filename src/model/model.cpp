@@ -1,0 +1,40 @@
+#include "model/model.hpp"
+
+#include "model/lps_model.hpp"
+#include "model/paper_model.hpp"
+#include "scene/scene.hpp"
+
+namespace fissure {
+
+double Model::elastic_energy(const double* y) {
+  const auto& volume = particles_.volume;
+  std::vector<double> w(volume.size());
+  energy_density(y, w.data());
+  double total = 0;
+#pragma omp parallel for reduction(+ : total) schedule(static)
+  for (std::size_t i = 0; i < w.size(); ++i) total += volume[i] * w[i];
+  return total;
+}
+
+std::unique_ptr<Model> make_model(const Scene& scene) {
+  const Particles& particles = scene.particles;
+  MaterialPoints m;
+  const int n = particles.count();
+  m.bulk_modulus.resize(n);
+  m.shear_modulus.resize(n);
+  m.density.resize(n);
+  m.horizon.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int b = particles.body[i];
+    const Material& material = scene.config.bodies[b].material;
+    m.bulk_modulus[i] = material.bulk_modulus;
+    m.shear_modulus[i] = material.shear_modulus;
+    m.density[i] = material.density;
+    m.horizon[i] = scene.horizon_of_body[b];
+  }
+  if (scene.config.bodies.front().material.model == ModelVariant::paper)
+    return std::make_unique<PaperModel>(particles, scene.families, std::move(m));
+  return std::make_unique<LpsModel>(particles, scene.families, std::move(m));
+}
+
+}  // namespace fissure

@@ -1,0 +1,53 @@
+#pragma once
+// The constitutive model: internal forces, energies and the stable explicit step, for positions
+// y. It knows nothing of time stepping.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/particles.hpp"
+
+namespace fissure {
+
+struct Scene;
+
+// Per-particle material constants, expanded from the bodies.
+struct MaterialPoints {
+  std::vector<double> bulk_modulus;   // κ
+  std::vector<double> shear_modulus;  // μ
+  std::vector<double> density;        // ρ
+  std::vector<double> horizon;        // δ [m]
+};
+
+class Model {
+ public:
+  Model(const Particles& particles, const Families& families, MaterialPoints materials)
+      : particles_(particles), families_(families), materials_(std::move(materials)) {}
+  virtual ~Model() = default;
+  virtual std::string name() const = 0;
+  // Internal forces F_i = V_i Σ_j (T<j,i> − T<i,j>) V_j (Eq 2 times V_i), 3N, overwritten.
+  // Also updates dilatation().
+  virtual void forces(const double* y, double* f) = 0;
+  // Strain energy density W_i of each particle at positions y (N values).
+  virtual void energy_density(const double* y, double* w) = 0;
+  // Total elastic energy Π = Σ V_i W_i.
+  double elastic_energy(const double* y);
+  // Dilatation θ_i from the last forces() call.
+  const std::vector<double>& dilatation() const { return dilatation_; }
+  // Gershgorin bound on the stable explicit step at the reference state (notes §4).
+  virtual double stable_time_step() const = 0;
+  // Bytes of per-bond data the force kernel streams.
+  virtual std::size_t bytes_per_bond() const = 0;
+
+ protected:
+  const Particles& particles_;
+  const Families& families_;
+  MaterialPoints materials_;
+  std::vector<double> dilatation_;
+};
+
+// The model the scene's bodies ask for (material.model), set up for its particles.
+std::unique_ptr<Model> make_model(const Scene& scene);
+
+}  // namespace fissure

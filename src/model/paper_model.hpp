@@ -1,0 +1,24 @@
+#pragma once
+// The paper's literal isotropic model, Eqs 3–10, with Λ = n·ξ/|ξ| in Eqs 4, 6 and 8 and the
+// continuum constants a, b, 9/(4πδ⁴). Kept to show why the default model deviates (docs/model.md):
+// it is neither objective nor conservative, and its moduli depend on the particle set.
+#include "model/model.hpp"
+
+namespace fissure {
+
+class PaperModel final : public Model {
+ public:
+  PaperModel(const Particles& particles, const Families& families, MaterialPoints materials);
+  std::string name() const override { return "paper"; }
+  void forces(const double* y, double* f) override;
+  // The energy whose gradient the forces are when Λ = 1 (notes §3): W_i = αθ_i² +
+  // b Σ_j ω_ij e_ij² V_j with θ_i = 9/(4πδ⁴) Σ_j ω_ij e_ij V_j and α = ½(κ − 5μ/3).
+  void energy_density(const double* y, double* w) override;
+  double stable_time_step() const override;
+  std::size_t bytes_per_bond() const override;
+
+ private:
+  std::vector<double> omega_;  // ω_ij = δ/|ξ| (Eq 5)
+};
+
+}  // namespace fissure

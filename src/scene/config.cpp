@@ -1,0 +1,228 @@
+#include "scene/config.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "scene/yaml_reader.hpp"
+
+namespace fissure {
+
+bool Region::contains(const double* p) const {
+  if (kind == Kind::box)
+    return p[0] >= min[0] && p[0] <= max[0] && p[1] >= min[1] && p[1] <= max[1] &&
+           p[2] >= min[2] && p[2] <= max[2];
+  const double dx = p[0] - center[0], dy = p[1] - center[1], dz = p[2] - center[2];
+  return dx * dx + dy * dy + dz * dz <= radius * radius;
+}
+
+namespace {
+
+std::string indexed(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
+
+void check_box(const YamlReader& r, const Vec3& min, const Vec3& max, const std::string& path) {
+  for (int k = 0; k < 3; ++k)
+    if (max[k] <= min[k]) r.fail(join(path, "max"), "each component of max must exceed min");
+}
+
+Region read_region(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  r.check_keys(node, path, {"box", "sphere"});
+  if (node.size() != 1) r.fail(path, "give exactly one of box, sphere");
+  Region region;
+  if (node["box"]) {
+    const std::string p = join(path, "box");
+    r.check_keys(node["box"], p, {"min", "max"});
+    region.kind = Region::Kind::box;
+    region.min = r.vec3(node["box"]["min"], join(p, "min"));
+    region.max = r.vec3(node["box"]["max"], join(p, "max"));
+    check_box(r, region.min, region.max, p);
+  } else {
+    const std::string p = join(path, "sphere");
+    r.check_keys(node["sphere"], p, {"center", "radius"});
+    region.kind = Region::Kind::sphere;
+    region.center = r.vec3(node["sphere"]["center"], join(p, "center"));
+    region.radius = r.positive(node["sphere"]["radius"], join(p, "radius"));
+  }
+  return region;
+}
+
+std::string resolve(const std::string& config_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute() || config_file.empty()) return path;
+  return (std::filesystem::path(config_file).parent_path() / p).lexically_normal().string();
+}
+
+Geometry read_geometry(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  const std::vector<std::string> kinds = {"box", "sphere", "cylinder", "mesh", "points"};
+  r.check_keys(node, path, kinds);
+  if (node.size() != 1) r.fail(path, "give exactly one of box, sphere, cylinder, mesh, points");
+  Geometry g;
+  if (const auto n = node["box"]) {
+    const std::string p = join(path, "box");
+    r.check_keys(n, p, {"min", "max"});
+    g.kind = Geometry::Kind::box;
+    g.min = r.vec3(n["min"], join(p, "min"));
+    g.max = r.vec3(n["max"], join(p, "max"));
+    check_box(r, g.min, g.max, p);
+  } else if (const auto n = node["sphere"]) {
+    const std::string p = join(path, "sphere");
+    r.check_keys(n, p, {"center", "radius"});
+    g.kind = Geometry::Kind::sphere;
+    g.center = r.vec3(n["center"], join(p, "center"));
+    g.radius = r.positive(n["radius"], join(p, "radius"));
+  } else if (const auto n = node["cylinder"]) {
+    const std::string p = join(path, "cylinder");
+    r.check_keys(n, p, {"p0", "p1", "radius"});
+    g.kind = Geometry::Kind::cylinder;
+    g.p0 = r.vec3(n["p0"], join(p, "p0"));
+    g.p1 = r.vec3(n["p1"], join(p, "p1"));
+    g.radius = r.positive(n["radius"], join(p, "radius"));
+    if (g.p0 == g.p1) r.fail(join(p, "p1"), "the axis end points p0 and p1 coincide");
+  } else {
+    const bool mesh = static_cast<bool>(node["mesh"]);
+    const std::string p = join(path, mesh ? "mesh" : "points");
+    const YAML::Node entry = node[mesh ? "mesh" : "points"];
+    r.check_keys(entry, p, {"file", "scale", "translate"});
+    g.kind = mesh ? Geometry::Kind::mesh : Geometry::Kind::points;
+    g.file = resolve(r.file(), r.string(entry["file"], join(p, "file")));
+    if (entry["scale"]) g.scale = r.positive(entry["scale"], join(p, "scale"));
+    if (entry["translate"]) g.translate = r.vec3(entry["translate"], join(p, "translate"));
+  }
+  return g;
+}
+
+Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  r.check_keys(node, path, {"model", "density", "bulk_modulus", "shear_modulus"});
+  Material m;
+  if (node["model"]) {
+    const std::string model = r.string(node["model"], join(path, "model"));
+    if (model == "lps")
+      m.model = ModelVariant::lps;
+    else if (model == "paper")
+      m.model = ModelVariant::paper;
+    else
+      r.fail(join(path, "model"), fmt::format("unknown model '{}' (valid: lps, paper)", model));
+  }
+  m.density = r.positive(node["density"], join(path, "density"));
+  m.bulk_modulus = r.positive(node["bulk_modulus"], join(path, "bulk_modulus"));
+  m.shear_modulus = r.positive(node["shear_modulus"], join(path, "shear_modulus"));
+  return m;
+}
+
+Body read_body(const YamlReader& r, const YAML::Node& node, const std::string& path,
+               std::size_t index) {
+  r.check_keys(node, path,
+               {"name", "geometry", "resolution", "horizon", "material", "velocity"});
+  Body b;
+  b.name = node["name"] ? r.string(node["name"], join(path, "name")) : fmt::format("body{}", index);
+  b.geometry = read_geometry(r, node["geometry"], join(path, "geometry"));
+  b.resolution = r.positive(node["resolution"], join(path, "resolution"));
+  if (node["horizon"]) b.horizon = r.positive(node["horizon"], join(path, "horizon"));
+  b.material = read_material(r, node["material"], join(path, "material"));
+  if (node["velocity"]) b.velocity = r.vec3(node["velocity"], join(path, "velocity"));
+  return b;
+}
+
+Constraint read_constraint(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  r.check_keys(node, path, {"region", "fix", "velocity", "release_at"});
+  Constraint c;
+  c.region = read_region(r, node["region"], join(path, "region"));
+  if (node["fix"]) c.fix = r.boolean(node["fix"], join(path, "fix"));
+  const bool moves = static_cast<bool>(node["velocity"]);
+  if (c.fix == moves) r.fail(path, "give either fix: true or velocity: [vx, vy, vz]");
+  if (moves) c.velocity = r.vec3(node["velocity"], join(path, "velocity"));
+  if (node["release_at"]) c.release_at = r.non_negative(node["release_at"], join(path, "release_at"));
+  return c;
+}
+
+TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
+  r.check_keys(node, "time", {"end", "dt", "safety"});
+  TimeSettings t;
+  t.end = r.positive(node["end"], "time.end");
+  const YAML::Node dt = node["dt"];
+  if (!dt || (dt.IsScalar() && dt.Scalar() == "auto")) {
+    t.dt_auto = true;
+  } else {
+    t.dt_auto = false;
+    t.dt = r.positive(dt, "time.dt");
+  }
+  if (node["safety"]) t.safety = r.positive(node["safety"], "time.safety");
+  if (t.safety > 1) r.fail("time.safety", fmt::format("must be in (0, 1], got {}", t.safety));
+  return t;
+}
+
+Config read_config(const YamlReader& r, const YAML::Node& root) {
+  r.check_keys(root, "", {"name", "time", "integrator", "gravity", "bodies", "constraints",
+                          "damping", "probes", "output"});
+  Config c;
+  c.file = r.file();
+  c.name = root["name"] ? r.string(root["name"], "name")
+                        : std::filesystem::path(r.file()).stem().string();
+  c.time = read_time(r, root["time"]);
+  if (const auto n = root["integrator"]) {
+    r.check_keys(n, "integrator", {"type"});
+    c.integrator.type = r.string(n["type"], "integrator.type");
+  }
+  if (root["gravity"]) c.gravity = r.vec3(root["gravity"], "gravity");
+  const YAML::Node bodies = root["bodies"];
+  if (!bodies || !bodies.IsSequence() || bodies.size() == 0)
+    r.fail("bodies", "expected a non-empty list of bodies");
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    c.bodies.push_back(read_body(r, bodies[i], indexed("bodies", i), i));
+  for (std::size_t i = 1; i < c.bodies.size(); ++i)
+    if (c.bodies[i].material.model != c.bodies[0].material.model)
+      r.fail(indexed("bodies", i) + ".material.model", "all bodies must use the same model");
+  if (const auto n = root["constraints"]) {
+    if (!n.IsSequence()) r.fail("constraints", "expected a list");
+    for (std::size_t i = 0; i < n.size(); ++i)
+      c.constraints.push_back(read_constraint(r, n[i], indexed("constraints", i)));
+  }
+  if (root["damping"]) c.damping = r.non_negative(root["damping"], "damping");
+  if (const auto n = root["probes"]) {
+    if (!n.IsSequence()) r.fail("probes", "expected a list");
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const std::string p = indexed("probes", i);
+      r.check_keys(n[i], p, {"name", "region"});
+      Probe probe{r.string(n[i]["name"], join(p, "name")), read_region(r, n[i]["region"], join(p, "region"))};
+      for (const auto& other : c.probes)
+        if (other.name == probe.name) r.fail(join(p, "name"), "duplicate probe name");
+      c.probes.push_back(probe);
+    }
+  }
+  const YAML::Node out = root["output"];
+  if (out) r.check_keys(out, "output", {"dir", "every", "probe_every"});
+  c.output.dir = out && out["dir"] ? r.string(out["dir"], "output.dir") : "out/" + c.name;
+  c.output.every = out && out["every"] ? r.positive(out["every"], "output.every") : c.time.end / 100;
+  c.output.probe_every =
+      out && out["probe_every"] ? r.positive(out["probe_every"], "output.probe_every") : c.output.every;
+  return c;
+}
+
+}  // namespace
+
+Config parse_config(const std::string& yaml_text, const std::string& file,
+                    const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, "", fmt::format("not valid YAML (line {}, column {}): {}",
+                                           e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+  if (!root.IsMap()) throw InputError(file, "", "expected a YAML map at the top level");
+  for (const auto& assignment : overrides) apply_override(root, assignment, file);
+  return read_config(YamlReader(file), root);
+}
+
+Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the config file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_config(text.str(), path, overrides);
+}
+
+}  // namespace fissure

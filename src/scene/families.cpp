@@ -1,0 +1,121 @@
+#include <nanoflann.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+
+#include "scene/particles.hpp"
+
+namespace fissure {
+
+namespace {
+
+struct PointCloud {
+  const std::vector<double>& xyz;
+  std::size_t kdtree_get_point_count() const { return xyz.size() / 3; }
+  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return xyz[3 * i + dim]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<
+    nanoflann::L2_Simple_Adaptor<double, PointCloud, double, std::uint32_t>, PointCloud, 3,
+    std::uint32_t>;
+
+std::uint64_t spread_bits(std::uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+}  // namespace
+
+Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
+  const int n = particles.count();
+  PointCloud cloud{particles.reference};
+  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+
+  std::vector<std::vector<int>> rows(n);
+#pragma omp parallel
+  {
+    std::vector<std::pair<std::uint32_t, double>> matches;
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < n; ++i) {
+      const int body = particles.body[i];
+      const double delta = horizon_of_body[body];
+      matches.clear();
+      tree.radiusSearch(&particles.reference[3 * i], delta * delta, matches,
+                        nanoflann::SearchParams(32, 0, false));
+      auto& row = rows[i];
+      for (const auto& [j, dist2] : matches)
+        if (static_cast<int>(j) != i && particles.body[j] == body && dist2 > 0)
+          row.push_back(static_cast<int>(j));
+      std::sort(row.begin(), row.end());
+    }
+  }
+
+  Families f;
+  f.offsets.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) f.offsets[i + 1] = f.offsets[i] + static_cast<int>(rows[i].size());
+  f.neighbors.resize(f.offsets[n]);
+  f.reference_length.resize(f.offsets[n]);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    int k = f.offsets[i];
+    const double* xi = &particles.reference[3 * i];
+    for (int j : rows[i]) {
+      const double* xj = &particles.reference[3 * j];
+      f.neighbors[k] = j;
+      f.reference_length[k] =
+          std::sqrt((xj[0] - xi[0]) * (xj[0] - xi[0]) + (xj[1] - xi[1]) * (xj[1] - xi[1]) +
+                    (xj[2] - xi[2]) * (xj[2] - xi[2]));
+      ++k;
+    }
+  }
+  return f;
+}
+
+void sort_spatially(Particles& p, double cell) {
+  const int n = p.count();
+  if (n == 0) return;
+  double lo[3] = {p.reference[0], p.reference[1], p.reference[2]};
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p.reference[3 * i + d]);
+  std::vector<std::uint64_t> code(n);
+  for (int i = 0; i < n; ++i) {
+    std::uint64_t c = 0;
+    for (int d = 0; d < 3; ++d)
+      c |= spread_bits(static_cast<std::uint64_t>((p.reference[3 * i + d] - lo[d]) / cell)) << d;
+    code[i] = c;
+  }
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return code[a] < code[b]; });
+  Particles sorted;
+  sorted.reference.resize(3 * n);
+  sorted.velocity.resize(3 * n);
+  sorted.volume.resize(n);
+  sorted.mass.resize(n);
+  sorted.body.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const int i = order[k];
+    for (int d = 0; d < 3; ++d) {
+      sorted.reference[3 * k + d] = p.reference[3 * i + d];
+      sorted.velocity[3 * k + d] = p.velocity[3 * i + d];
+    }
+    sorted.volume[k] = p.volume[i];
+    sorted.mass[k] = p.mass[i];
+    sorted.body[k] = p.body[i];
+  }
+  p = std::move(sorted);
+}
+
+}  // namespace fissure

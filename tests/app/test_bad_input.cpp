@@ -1,0 +1,105 @@
+// Every bad-input class gets one clear error naming file, key path and reason, and exit code 2;
+// a run that turns non-finite stops with step, time and particle, and keeps its output.
+#include <gtest/gtest.h>
+
+#include "app/run_fissure.hpp"
+
+namespace fissure {
+namespace {
+
+std::string scene(const std::string& geometry, const std::string& material_extra = "",
+                  const std::string& body_extra = "") {
+  return "time: {end: 0.001}\nbodies:\n  - geometry: " + geometry +
+         "\n    resolution: 0.02\n" + body_extra +
+         "    material: {density: 1000, bulk_modulus: 1.0e6, shear_modulus: 1.0e6" + material_extra +
+         "}\n";
+}
+
+const std::string kBox = "{box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}";
+
+struct BadCase {
+  std::string name;
+  std::string yaml;
+  std::string args;      // extra CLI arguments
+  std::string expected;  // substring of the message after the file name
+};
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ClearMessageAndExitCodeTwo) {
+  const BadCase& c = GetParam();
+  const auto dir = test::scratch_dir("bad_" + c.name);
+  const auto config = dir / "scene.yaml";
+  test::write_file(config, c.yaml);
+  test::write_file(dir / "broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  test::write_file(dir / "empty.txt", "# no particles here\n");
+  const auto outcome = test::run_fissure("info " + config.string() + " " + c.args);
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("error: "), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find(c.expected), std::string::npos)
+      << "expected '" << c.expected << "' in: " << outcome.output;
+  EXPECT_EQ(outcome.output.find('\n'), outcome.output.size() - 1) << "one line: " << outcome.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Classes, BadInput,
+    ::testing::Values(
+        BadCase{"unknown_key", scene(kBox, ", densty: 3"), "",
+                "bodies[0].material.densty: unknown key; did you mean 'density'?"},
+        BadCase{"wrong_type", scene(kBox), "--set bodies[0].horizon=wide",
+                "bodies[0].horizon: expected a number, got 'wide'"},
+        BadCase{"missing_mesh", scene("{mesh: {file: nowhere.obj}}"), "",
+                "nowhere.obj: bodies[0].geometry:"},
+        BadCase{"malformed_mesh", scene("{mesh: {file: broken.obj}}"), "",
+                "broken.obj: bodies[0].geometry:"},
+        BadCase{"density", scene(kBox), "--set bodies[0].material.density=-1",
+                "bodies[0].material.density: must be positive"},
+        BadCase{"bulk_modulus", scene(kBox), "--set bodies[0].material.bulk_modulus=0",
+                "bodies[0].material.bulk_modulus: must be positive"},
+        BadCase{"shear_modulus", scene(kBox), "--set bodies[0].material.shear_modulus=-5",
+                "bodies[0].material.shear_modulus: must be positive"},
+        BadCase{"resolution", scene(kBox), "--set bodies[0].resolution=0",
+                "bodies[0].resolution: must be positive"},
+        BadCase{"horizon", scene(kBox), "--set bodies[0].horizon=0",
+                "bodies[0].horizon: must be positive"},
+        BadCase{"no_particles", scene("{points: {file: empty.txt}}"), "",
+                "empty.txt: bodies[0].geometry: the points file holds no particles"},
+        BadCase{"integrator", scene(kBox), "--set integrator.type=verlet",
+                "integrator.type: unknown integrator 'verlet'"}),
+    [](const auto& info) { return info.param.name; });
+
+TEST(BadInput, MissingConfigFile) {
+  const auto outcome = test::run_fissure("run /nonexistent/scene.yaml");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_NE(outcome.output.find("/nonexistent/scene.yaml: cannot open the config file"),
+            std::string::npos)
+      << outcome.output;
+}
+
+// dt far above the stable step: the run stops with step, time and particle, exit code 3, and the
+// probes and frames written so far stay on disk.
+TEST(BadInput, NonFiniteStateStopsWithStepTimeAndParticle) {
+  const auto dir = test::scratch_dir("nonfinite");
+  const auto config = dir / "scene.yaml";
+  test::write_file(config, scene(kBox) + "gravity: [0, 0, -9.81]\n" +
+                               "constraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.02, 1, 1]}}, "
+                               "fix: true}\n" + "probes:\n  - {name: all, region: {box: {min: [-1, -1, -1], "
+                                         "max: [1, 1, 1]}}}\n" +
+                               "output: {every: 1.0e-6, probe_every: 1.0e-6}\n");
+  const auto out = dir / "out";
+  const auto outcome = test::run_fissure("run " + config.string() + " --out " + out.string() +
+                                         " --set time.dt=1e-2 --set time.end=1.0");
+  EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
+  EXPECT_NE(outcome.output.find("warning: "), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("state became non-finite at step"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("first at particle"), std::string::npos) << outcome.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "probes.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "particles.pvd"));
+  EXPECT_TRUE(std::filesystem::exists(out / "particles_000000.vtu"));
+  std::ifstream summary(out / "summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), {});
+  EXPECT_NE(text.find("\"status\": \"nonfinite\""), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace fissure

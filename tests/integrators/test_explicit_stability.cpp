@@ -1,0 +1,84 @@
+// The explicit schemes: energy behaviour and where they really go unstable.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "app/energy.hpp"
+#include "integrators/integrator.hpp"
+#include "model/model.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+double total_energy(Model& model, const Scene& scene, const State& s) {
+  return kinetic_energy(scene.particles.mass, s.velocity) + model.elastic_energy(s.position.data());
+}
+
+// A free vibration of a 0.2 × 0.06 × 0.06 bar (stretch mode, v_x ∝ x − L/2) under velocity
+// Verlet at half the stable estimate keeps |ΔE|/E below 1e-3 over 10,000 steps. Verlet's
+// energy error is bounded and O((ω Δt)²) for the excited low modes, so 1e-3 has a wide margin.
+TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
+  const std::string yaml =
+      "time: {end: 1.0}\nbodies:\n  - geometry: {box: {min: [0, 0, 0], max: [0.2, 0.06, 0.06]}}\n"
+      "    resolution: 0.02\n    material: {density: 1000, bulk_modulus: 2.0e6, shear_modulus: "
+      "1.0e6}\n";
+  const Scene scene = build_scene(parse_config(yaml, "bar.yaml"));
+  auto model = make_model(scene);
+  Dynamics dynamics(scene, *model);
+  auto integrator = make_integrator("velocity_verlet", "test");
+  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0), 0};
+  for (int i = 0; i < scene.particles.count(); ++i)
+    state.velocity[3 * i] = 0.1 * (scene.particles.reference[3 * i] / 0.2 - 0.5);
+  const double dt = 0.5 * model->stable_time_step();
+  const double e0 = total_energy(*model, scene, state);
+  double worst = 0;
+  for (int s = 1; s <= 10000; ++s) {
+    integrator->step(dynamics, state, dt);
+    if (s % 500 == 0) worst = std::max(worst, std::abs(total_energy(*model, scene, state) - e0) / e0);
+  }
+  std::printf("velocity Verlet, 10000 steps at 0.5x estimate: max |dE|/E = %.2e\n", worst);
+  EXPECT_LT(worst, 1e-3);
+}
+
+// Runs a small randomly perturbed block at `factor` × the estimate; true if the energy grows
+// a thousandfold (or turns non-finite) within 2,000 steps.
+bool goes_unstable(const std::string& type, double factor) {
+  const Scene scene = test::block_scene(0.06, 0.02, 2e6, 1e6);
+  auto model = make_model(scene);
+  Dynamics dynamics(scene, *model);
+  auto integrator = make_integrator(type, "test");
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1e-5, 1e-5);
+  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0), 0};
+  for (double& y : state.position) y += u(rng);
+  const double e0 = total_energy(*model, scene, state);
+  const double dt = factor * model->stable_time_step();
+  for (int s = 0; s < 2000; ++s) {
+    integrator->step(dynamics, state, dt);
+    if (s % 20 == 0) {
+      const double e = total_energy(*model, scene, state);
+      if (!std::isfinite(e) || e > 1e3 * e0) return true;
+    }
+  }
+  return false;
+}
+
+// The estimate is safe (stable at 1×) and not needlessly small (unstable by 3×).
+TEST(ExplicitIntegrators, InstabilityLiesBetweenOneAndThreeTimesTheEstimate) {
+  for (const std::string type : {"symplectic_euler", "velocity_verlet"}) {
+    double unstable_at = 0;
+    for (double f = 1.0; f <= 3.0 + 1e-9; f += 0.1)
+      if (goes_unstable(type, f)) {
+        unstable_at = f;
+        break;
+      }
+    std::printf("%s: first unstable step at %.1fx the estimate\n", type.c_str(), unstable_at);
+    EXPECT_GT(unstable_at, 1.0) << type;
+    EXPECT_LE(unstable_at, 3.0 + 1e-9) << type;
+  }
+}
+
+}  // namespace
+}  // namespace fissure

@@ -1,0 +1,83 @@
+// Config parsing: defaults, overrides and key-path errors.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "scene/config.hpp"
+
+namespace fissure {
+namespace {
+
+const char* kMinimal =
+    "time: {end: 1.0, dt: auto}\n"
+    "bodies:\n"
+    "  - name: bar\n"
+    "    geometry: {box: {min: [0, 0, 0], max: [1, 0.1, 0.1]}}\n"
+    "    resolution: 0.025\n"
+    "    material: {density: 1000, bulk_modulus: 5.0e6, shear_modulus: 5.0e6}\n";
+
+std::string error_of(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_config(yaml, "scene.yaml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Config, DefaultsAreFilledIn) {
+  const Config c = parse_config(kMinimal, "dir/scene.yaml");
+  EXPECT_EQ(c.name, "scene");
+  EXPECT_TRUE(c.time.dt_auto);
+  EXPECT_EQ(c.integrator.type, "symplectic_euler");
+  EXPECT_DOUBLE_EQ(c.bodies[0].horizon, 1.45);
+  EXPECT_EQ(c.bodies[0].material.model, ModelVariant::lps);
+  EXPECT_EQ(c.output.dir, "out/scene");
+  EXPECT_DOUBLE_EQ(c.output.every, 0.01);
+  EXPECT_DOUBLE_EQ(c.damping, 0.0);
+}
+
+TEST(Config, OverridesReachNestedKeysAndListItems) {
+  const Config c = parse_config(kMinimal, "scene.yaml",
+                                {"bodies[0].material.density=2000", "time.dt=1e-5",
+                                 "integrator.type=velocity_verlet", "bodies.0.horizon=3"});
+  EXPECT_DOUBLE_EQ(c.bodies[0].material.density, 2000);
+  EXPECT_FALSE(c.time.dt_auto);
+  EXPECT_DOUBLE_EQ(c.time.dt, 1e-5);
+  EXPECT_EQ(c.integrator.type, "velocity_verlet");
+  EXPECT_DOUBLE_EQ(c.bodies[0].horizon, 3);
+}
+
+TEST(Config, UnknownKeySuggestsNearest) {
+  const std::string e = error_of(kMinimal, {"bodies[0].material.densty=5"});
+  EXPECT_NE(e.find("scene.yaml: bodies[0].material.densty: unknown key; did you mean 'density'?"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Config, WrongTypeNamesKey) {
+  const std::string e = error_of(kMinimal, {"bodies[0].resolution=fine"});
+  EXPECT_NE(e.find("bodies[0].resolution: expected a number, got 'fine'"), std::string::npos) << e;
+}
+
+TEST(Config, NonPositiveValuesAreRejected) {
+  for (const char* key : {"bodies[0].material.density", "bodies[0].material.bulk_modulus",
+                          "bodies[0].material.shear_modulus", "bodies[0].resolution",
+                          "bodies[0].horizon"}) {
+    const std::string e = error_of(kMinimal, {std::string(key) + "=0"});
+    EXPECT_NE(e.find(std::string(key) + ": must be positive"), std::string::npos) << e;
+  }
+}
+
+TEST(Config, MalformedYamlGivesLine) {
+  const std::string e = error_of("time: {end: 1.0\nbodies: [");
+  EXPECT_NE(e.find("scene.yaml: not valid YAML (line"), std::string::npos) << e;
+}
+
+TEST(Config, ConstraintNeedsFixOrVelocity) {
+  const std::string e = error_of(std::string(kMinimal) +
+                                 "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}}\n");
+  EXPECT_NE(e.find("constraints[0]: give either fix: true or velocity"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace fissure
