@@ -22,7 +22,9 @@ namespace {
 // Meshes beyond this many tets are taken as a mistake in the edge length.
 constexpr double kMaxTets = 5e7;
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
 
 }  // namespace
 
@@ -130,8 +132,8 @@ void weld_vertices(SurfaceMesh& surface) {
   std::vector<int> merged(surface.vertices.size() / 3);
   for (size_t i = 0; i < merged.size(); ++i) {
     const double* p = &surface.vertices[3 * i];
-    merged[i] = unique.emplace(std::array<double, 3>{p[0], p[1], p[2]}, int(unique.size()))
-                    .first->second;
+    merged[i] =
+        unique.emplace(std::array<double, 3>{p[0], p[1], p[2]}, int(unique.size())).first->second;
   }
   std::vector<int> triangles;
   for (size_t t = 0; t < surface.triangles.size(); t += 3) {
@@ -155,8 +157,8 @@ void weld_vertices(SurfaceMesh& surface) {
   surface.triangles = std::move(triangles);
 }
 
-void check_tet_budget(double volume, double edge_length, const std::string& path) {
-  const double estimate = volume / regular_tet_volume(edge_length);
+void check_tet_budget(double volume, double area, double edge_length, const std::string& path) {
+  const double estimate = (volume + area * edge_length) / regular_tet_volume(edge_length);
   if (!(estimate <= kMaxTets)) {
     throw InputError(path, "",
                      fmt::format("edge length {} would need about {:.3g} tets (limit {:.0g}); "

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the mesh readers and the TetGen wrappers.
+// Internals shared by the files of the mesh module: parsing helpers, surface checks and the
+// TetGen wrapper. Not for use outside src/mesh.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,8 +42,22 @@ void validate_surface(const SurfaceMesh& surface, const std::string& path);
 // Merges bit-identical vertices, then drops triangles with a repeated vertex and unused vertices.
 void weld_vertices(SurfaceMesh& surface);
 
-// Throws if a region of `volume` meshed at `edge_length` would need an absurd number of tets.
-void check_tet_budget(double volume, double edge_length, const std::string& path);
+// Splits edges longer than `max_edge` at their midpoints until none is left. The new points lie
+// on the input triangles, so the enclosed volume is unchanged.
+void refine_surface(SurfaceMesh& surface, double max_edge);
+
+// TetGen quality mesh (radius-edge ratio 1.414, tets up to `max_volume`) of a closed, welded
+// surface, kept as is; tets positively oriented. Failures become InputError(file, ...).
+// TetGen's self-intersection check can cost as much as the meshing itself.
+TetMesh tetgen_quality_mesh(const SurfaceMesh& surface, double max_volume, const std::string& file,
+                            bool check_intersections);
+
+// tetrahedralize_surface for surfaces valid by construction: no self-intersection check.
+TetMesh tetrahedralize_primitive(const SurfaceMesh& surface, double edge_length);
+
+// Throws if a body of `volume` and surface `area` meshed at `edge_length` would need an absurd
+// number of tets (thin bodies still need a layer of λ-sized tets over their surface).
+void check_tet_budget(double volume, double area, double edge_length, const std::string& path);
 
 // Volume of a regular tet of edge λ: TetGen's maximum tet volume for target edge λ.
 double regular_tet_volume(double edge_length);

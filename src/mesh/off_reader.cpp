@@ -32,17 +32,15 @@ SurfaceMesh parse_off(std::string_view text, const std::string& path) {
     throw InputError(path, "", "missing OFF header");
   }
   // Counts follow the keyword on the same line or on the next.
-  size_t next = 1;
-  const Line* counts = &lines[0];
-  size_t first = 1;
-  if (lines[0].tokens.size() == 1) {
-    if (lines.size() < 2) throw InputError(path, "", "missing vertex and face counts");
-    counts = &lines[1];
-    first = 0;
-    next = 2;
+  const bool counts_below = lines[0].tokens.size() == 1;
+  if (counts_below && lines.size() < 2) {
+    throw InputError(path, "", "missing vertex and face counts");
   }
-  const long long vertex_count = count_at(*counts, first, path, "vertex");
-  const long long face_count = count_at(*counts, first + 1, path, "face");
+  const Line& counts = lines[counts_below ? 1 : 0];
+  const size_t first = counts_below ? 0 : 1;
+  size_t next = counts_below ? 2 : 1;
+  const long long vertex_count = count_at(counts, first, path, "vertex");
+  const long long face_count = count_at(counts, first + 1, path, "face");
   const long long available = static_cast<long long>(lines.size() - next);
   if (vertex_count > available || face_count > available - vertex_count) {
     throw InputError(path, "",

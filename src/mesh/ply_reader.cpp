@@ -212,9 +212,10 @@ SurfaceMesh parse_ply(std::string_view data, const std::string& path) {
       min_size += header.binary ? type_size(p.list_count.value_or(p.type)) : 1;
     }
     if (e.count > reader.remaining() / min_size) {
-      throw InputError(path, "",
-                       fmt::format("header claims {} '{}' elements but the data can hold at most {}",
-                                   e.count, e.name, reader.remaining() / min_size));
+      throw InputError(
+          path, "",
+          fmt::format("header claims {} '{}' elements but the data can hold at most {}", e.count,
+                      e.name, reader.remaining() / min_size));
     }
     const bool is_vertex = e.name == "vertex";
     const bool is_face = e.name == "face";

@@ -224,9 +224,10 @@ SurfaceMesh cylinder_surface(const Vec3& p0, const Vec3& p1, double radius, doub
     const double z = end ? length : 0.0;
     std::vector<int> inner = ring(z, 0.0, 1);
     for (int r = 1; r <= rings; ++r) {
-      const int count = std::min(
-          around, segments(2.0 * std::numbers::pi * radius * r / rings, edge_length, 6));
-      std::vector<int> outer = r == rings ? side[end ? layers : 0] : ring(z, radius * r / rings, count);
+      const int count =
+          std::min(around, segments(2.0 * std::numbers::pi * radius * r / rings, edge_length, 6));
+      std::vector<int> outer =
+          r == rings ? side[end ? layers : 0] : ring(z, radius * r / rings, count);
       stitch_rings(inner, outer, end == 0, s.triangles);
       inner = std::move(outer);
     }
@@ -238,15 +239,17 @@ SurfaceMesh cylinder_surface(const Vec3& p0, const Vec3& p1, double radius, doub
 
 TetMesh tetrahedralize_box(const Vec3& min, const Vec3& max, double edge_length) {
   require_positive(edge_length, "box edge length");
-  double volume = 1.0;
+  Vec3 size{};
   for (int a = 0; a < 3; ++a) {
     if (!(max[a] > min[a]) || !std::isfinite(min[a]) || !std::isfinite(max[a])) {
       throw InputError("", "", "box max must exceed box min in every coordinate");
     }
-    volume *= max[a] - min[a];
+    size[a] = max[a] - min[a];
   }
-  mesh_detail::check_tet_budget(volume, edge_length, "");
-  return tetrahedralize_surface(box_surface(min, max, edge_length), edge_length, "");
+  mesh_detail::check_tet_budget(size[0] * size[1] * size[2],
+                                2.0 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0]),
+                                edge_length, "");
+  return mesh_detail::tetrahedralize_primitive(box_surface(min, max, edge_length), edge_length);
 }
 
 TetMesh tetrahedralize_sphere(const Vec3& center, double radius, double edge_length) {
@@ -256,12 +259,12 @@ TetMesh tetrahedralize_sphere(const Vec3& center, double radius, double edge_len
     if (!std::isfinite(c)) throw InputError("", "", "sphere center must be finite");
   }
   mesh_detail::check_tet_budget(4.0 / 3.0 * std::numbers::pi * radius * radius * radius,
-                                edge_length, "");
-  return tetrahedralize_surface(sphere_surface(center, radius, edge_length), edge_length, "");
+                                4.0 * std::numbers::pi * radius * radius, edge_length, "");
+  return mesh_detail::tetrahedralize_primitive(sphere_surface(center, radius, edge_length),
+                                               edge_length);
 }
 
-TetMesh tetrahedralize_cylinder(const Vec3& p0, const Vec3& p1, double radius,
-                                double edge_length) {
+TetMesh tetrahedralize_cylinder(const Vec3& p0, const Vec3& p1, double radius, double edge_length) {
   require_positive(edge_length, "cylinder edge length");
   require_positive(radius, "cylinder radius");
   for (int a = 0; a < 3; ++a) {
@@ -271,8 +274,11 @@ TetMesh tetrahedralize_cylinder(const Vec3& p0, const Vec3& p1, double radius,
   }
   const double length = std::hypot(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
   require_positive(length, "cylinder length (distance between end points)");
-  mesh_detail::check_tet_budget(std::numbers::pi * radius * radius * length, edge_length, "");
-  return tetrahedralize_surface(cylinder_surface(p0, p1, radius, edge_length), edge_length, "");
+  mesh_detail::check_tet_budget(std::numbers::pi * radius * radius * length,
+                                2.0 * std::numbers::pi * radius * (radius + length), edge_length,
+                                "");
+  return mesh_detail::tetrahedralize_primitive(cylinder_surface(p0, p1, radius, edge_length),
+                                               edge_length);
 }
 
 }  // namespace fissure

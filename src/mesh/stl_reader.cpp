@@ -80,14 +80,16 @@ SurfaceMesh parse_stl(std::string_view data, const std::string& path) {
       data.size() == kHeaderBytes + kRecordBytes * uint64_t{binary_count(data)}) {
     return parse_binary(data);
   }
+  // Text never holds NUL bytes; binary counts and coordinates almost always do.
   const size_t start = data.find_first_not_of(" \t\r\n");
-  if (start != std::string_view::npos && data.substr(start).starts_with("solid")) {
+  if (start != std::string_view::npos && data.substr(start).starts_with("solid") &&
+      data.find('\0') == std::string_view::npos) {
     return parse_ascii(data, path);
   }
   if (data.size() < kHeaderBytes) {
-    throw InputError(path, "",
-                     fmt::format("too short for a binary STL ({} bytes) and not ASCII STL",
-                                 data.size()));
+    throw InputError(
+        path, "",
+        fmt::format("too short for a binary STL ({} bytes) and not ASCII STL", data.size()));
   }
   const uint32_t count = binary_count(data);
   throw InputError(path, "",

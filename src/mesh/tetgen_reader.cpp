@@ -29,9 +29,10 @@ long long header_value(const Line& line, size_t k, long long fallback, const std
   return value;
 }
 
-// Header and body lines; throws if the header's count exceeds the lines present.
-std::vector<Line> counted_lines(const std::string& path, long long& count, const char* what) {
-  std::vector<Line> lines = mesh_detail::tokenized_lines(mesh_detail::read_file(path), true);
+// Header and body lines of `text`; throws if the header's count exceeds the lines present.
+std::vector<Line> counted_lines(std::string_view text, const std::string& path, long long& count,
+                                const char* what) {
+  std::vector<Line> lines = mesh_detail::tokenized_lines(text, true);
   if (lines.empty()) throw InputError(path, "", "empty file");
   count = header_value(lines[0], 0, 0, path, "count");
   if (count == 0) throw InputError(path, "", fmt::format("no {}", what));
@@ -45,8 +46,9 @@ std::vector<Line> counted_lines(const std::string& path, long long& count, const
 
 // Returns the numbering base (0 or 1) of the node indices.
 int read_nodes(const std::string& path, std::vector<double>& vertices) {
+  const std::string text = mesh_detail::read_file(path);
   long long count;
-  const std::vector<Line> lines = counted_lines(path, count, "nodes");
+  const std::vector<Line> lines = counted_lines(text, path, count, "nodes");
   if (header_value(lines[0], 1, 3, path, "dimension") != 3) {
     fail_at_line(path, lines[0].number, "dimension must be 3");
   }
@@ -59,7 +61,8 @@ int read_nodes(const std::string& path, std::vector<double>& vertices) {
       fail_at_line(path, line.number, "node line needs an index and x y z");
     }
     if (i == 0) {
-      if (index != 0 && index != 1) fail_at_line(path, line.number, "first node index must be 0 or 1");
+      if (index != 0 && index != 1)
+        fail_at_line(path, line.number, "first node index must be 0 or 1");
       base = static_cast<int>(index);
     }
     if (index != base + i) {
@@ -81,10 +84,12 @@ int read_nodes(const std::string& path, std::vector<double>& vertices) {
 // Fills `tets` (0-based) and the file's element numbers, for error messages.
 void read_elements(const std::string& path, int base, long long vertex_count,
                    std::vector<int>& tets, std::vector<long long>& numbers) {
+  const std::string text = mesh_detail::read_file(path);
   long long count;
-  const std::vector<Line> lines = counted_lines(path, count, "tets");
+  const std::vector<Line> lines = counted_lines(text, path, count, "tets");
   const long long corners = header_value(lines[0], 1, 4, path, "nodes per tet");
-  if (corners != 4 && corners != 10) fail_at_line(path, lines[0].number, "nodes per tet must be 4 or 10");
+  if (corners != 4 && corners != 10)
+    fail_at_line(path, lines[0].number, "nodes per tet must be 4 or 10");
   tets.reserve(4 * count);
   numbers.reserve(count);
   for (long long i = 0; i < count; ++i) {

@@ -1,10 +1,10 @@
-// Closed triangulated surface -> quality tet mesh through TetGen.
+// tetrahedralize_surface: checks and refines a closed surface, then meshes it with TetGen.
 #include <fmt/format.h>
-#include <tetgen.h>
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "core/error.hpp"
 #include "mesh/geometry.hpp"
@@ -14,31 +14,8 @@ namespace fissure {
 
 namespace {
 
-using mesh_detail::regular_tet_volume;
-using mesh_detail::tet_signed_volume;
-
-// Surfaces whose edges are all below this multiple of λ are kept as they are.
-constexpr double kKeepSurfaceRatio = 2.0;
-
-// TetGen's exit codes (terminatetetgen) as user-facing reasons.
-std::string tetgen_failure(int code) {
-  switch (code) {
-    case 1:
-      return "out of memory";
-    case 2:
-      return "internal error";
-    case 3:
-      return "the surface intersects itself";
-    case 4:
-      return "the surface has a feature too small for the mesh";
-    case 5:
-      return "two facets of the surface are very close to each other";
-    case 10:
-      return "invalid input";
-    default:
-      return fmt::format("error code {}", code);
-  }
-}
+// Surface edges longer than this multiple of λ are split before meshing.
+constexpr double kSurfaceEdgeRatio = 1.5;
 
 // Every edge must be shared by exactly two triangles.
 void check_closed(const SurfaceMesh& surface, const std::string& file) {
@@ -74,16 +51,18 @@ void check_closed(const SurfaceMesh& surface, const std::string& file) {
   }
 }
 
-double longest_edge(const SurfaceMesh& surface) {
-  double longest = 0.0;
+double surface_area(const SurfaceMesh& surface) {
+  double area = 0.0;
   for (size_t t = 0; t < surface.triangles.size(); t += 3) {
-    for (int k = 0; k < 3; ++k) {
-      const double* p = &surface.vertices[3 * surface.triangles[t + k]];
-      const double* q = &surface.vertices[3 * surface.triangles[t + (k + 1) % 3]];
-      longest = std::max(longest, std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]));
-    }
+    const double* a = &surface.vertices[3 * surface.triangles[t]];
+    const double* b = &surface.vertices[3 * surface.triangles[t + 1]];
+    const double* c = &surface.vertices[3 * surface.triangles[t + 2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    area += 0.5 * std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                             u[0] * v[1] - u[1] * v[0]);
   }
-  return longest;
+  return area;
 }
 
 double bounding_box_volume(const std::vector<double>& vertices) {
@@ -99,28 +78,8 @@ double bounding_box_volume(const std::vector<double>& vertices) {
   return volume;
 }
 
-void fill_tetgen_input(const SurfaceMesh& surface, tetgenio& in) {
-  in.firstnumber = 0;
-  in.pointlist = new REAL[surface.vertices.size()];
-  std::copy(surface.vertices.begin(), surface.vertices.end(), in.pointlist);
-  in.numberofpoints = static_cast<int>(surface.vertices.size() / 3);
-  const int triangle_count = static_cast<int>(surface.triangles.size() / 3);
-  in.facetlist = new tetgenio::facet[triangle_count]();
-  in.numberoffacets = triangle_count;
-  for (int t = 0; t < triangle_count; ++t) {
-    tetgenio::facet& f = in.facetlist[t];
-    f.polygonlist = new tetgenio::polygon[1]();
-    f.numberofpolygons = 1;
-    f.polygonlist[0].vertexlist = new int[3];
-    f.polygonlist[0].numberofvertices = 3;
-    std::copy_n(&surface.triangles[3 * t], 3, f.polygonlist[0].vertexlist);
-  }
-}
-
-}  // namespace
-
-TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double edge_length,
-                               const std::string& source_file) {
+TetMesh mesh_surface(const SurfaceMesh& surface, double edge_length, const std::string& source_file,
+                     bool check_intersections) {
   if (!(edge_length > 0.0) || !std::isfinite(edge_length)) {
     throw InputError(source_file, "",
                      fmt::format("edge length must be positive and finite, got {}", edge_length));
@@ -130,32 +89,26 @@ TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double edge_length,
   mesh_detail::weld_vertices(closed);
   mesh_detail::validate_surface(closed, source_file);
   check_closed(closed, source_file);
-  mesh_detail::check_tet_budget(bounding_box_volume(closed.vertices), edge_length, source_file);
-
-  tetgenio in, out;
-  fill_tetgen_input(closed, in);
-  // p: mesh the surface, q: radius-edge ratio bound, a: max volume, z: 0-based, Q: quiet.
-  // Y keeps the input triangles: right when they are already about λ (TetGen would refine
-  // them to ~0.7λ), wrong for coarse surfaces, which Y would leave unrefined.
-  const bool keep_surface = longest_edge(closed) <= kKeepSurfaceRatio * edge_length;
-  std::string switches = fmt::format("pq1.414a{}zQ{}", regular_tet_volume(edge_length),
-                                     keep_surface ? "Y" : "");
-  try {
-    tetrahedralize(switches.data(), &in, &out);
-  } catch (int code) {
-    throw InputError(source_file, "", "TetGen failed: " + tetgen_failure(code));
+  const double box_volume = bounding_box_volume(closed.vertices);
+  // TetGen asserts (aborts) on input without extent in some axis.
+  if (!(box_volume > 0.0)) {
+    throw InputError(source_file, "", "surface is flat: it encloses no volume");
   }
-  if (out.numberoftetrahedra <= 0) throw InputError(source_file, "", "TetGen produced no tets");
+  mesh_detail::check_tet_budget(box_volume, surface_area(closed), edge_length, source_file);
+  mesh_detail::refine_surface(closed, kSurfaceEdgeRatio * edge_length);
+  return mesh_detail::tetgen_quality_mesh(closed, mesh_detail::regular_tet_volume(edge_length),
+                                          source_file, check_intersections);
+}
 
-  TetMesh mesh;
-  mesh.vertices.assign(out.pointlist, out.pointlist + 3 * out.numberofpoints);
-  mesh.tets.resize(4 * static_cast<size_t>(out.numberoftetrahedra));
-  for (int t = 0; t < out.numberoftetrahedra; ++t) {
-    int* tet = &mesh.tets[4 * static_cast<size_t>(t)];
-    std::copy_n(out.tetrahedronlist + static_cast<size_t>(t) * out.numberofcorners, 4, tet);
-    if (tet_signed_volume(mesh.vertices.data(), tet) < 0.0) std::swap(tet[2], tet[3]);
-  }
-  return mesh;
+}  // namespace
+
+TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double edge_length,
+                               const std::string& source_file) {
+  return mesh_surface(surface, edge_length, source_file, true);
+}
+
+TetMesh mesh_detail::tetrahedralize_primitive(const SurfaceMesh& surface, double edge_length) {
+  return mesh_surface(surface, edge_length, "", false);
 }
 
 }  // namespace fissure

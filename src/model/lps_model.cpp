@@ -1,64 +1,91 @@
 #include "model/lps_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "model/dilatation_calibration.hpp"
 #include "model/stable_time_step.hpp"
 
 namespace fissure {
 
-LpsModel::LpsModel(const Particles& particles, const Families& families, MaterialPoints materials)
+LpsModel::LpsModel(const Particles& particles, const Families& families, MaterialPoints materials,
+                   bool surface_correction)
     : Model(particles, families, std::move(materials)) {
   const int n = particles.count();
   const auto& off = families.offsets;
   const auto& nbr = families.neighbors;
   const auto& xi = families.reference_length;
-  omega_volume_.resize(families.directed_bonds());
+  const std::size_t bonds = families.directed_bonds();
+  std::vector<double> omega(bonds);
+  omega_volume_.resize(bonds);
   weighted_volume_.resize(n);
   deviatoric_coef_.resize(n);
-  dilatation_coef_.resize(n);
-  dilatation_term_.resize(n);
+  pressure_term_.resize(n);
+  shift_term_.resize(n);
   dilatation_.assign(n, 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double delta = materials_.horizon[i];
     double m = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double omega = delta / xi[b];  // Eq 5
-      omega_volume_[b] = omega * particles.volume[nbr[b]];
+      omega[b] = materials_.horizon[i] / xi[b];  // Eq 5
+      omega_volume_[b] = omega[b] * particles.volume[nbr[b]];
       m += omega_volume_[b] * xi[b] * xi[b];  // m_i = Σ ω|ξ|²V_j (notes §6)
     }
     weighted_volume_[i] = m;
-    const double kappa = materials_.bulk_modulus[i], mu = materials_.shear_modulus[i];
-    deviatoric_coef_[i] = m > 0 ? 15.0 * mu / m : 0.0;
-    dilatation_coef_[i] = m > 0 ? (3.0 * kappa - 5.0 * mu) / m : 0.0;
+    deviatoric_coef_[i] = m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0;
   }
+  std::vector<double> c(bonds);
+  if (surface_correction) {
+    c = dilatation_weights(particles, families, omega, weighted_volume_);
+  } else {
+    for (int i = 0; i < n; ++i)
+      for (int b = off[i]; b < off[i + 1]; ++b)
+        c[b] = weighted_volume_[i] > 0 ? 3.0 * omega[b] * xi[b] / weighted_volume_[i] : 0.0;
+  }
+  dilatation_volume_.resize(bonds);
+  reverse_volume_.resize(bonds);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const int j = nbr[b];
+      const int reverse = static_cast<int>(
+          std::lower_bound(nbr.begin() + off[j], nbr.begin() + off[j + 1], i) - nbr.begin());
+      dilatation_volume_[b] = c[b] * particles.volume[j];
+      reverse_volume_[b] = c[reverse] * particles.volume[j];
+    }
 }
 
-// θ_i = 3/m_i Σ_j ω_ij |ξ_ij| e_ij V_j (Eq 6 with Λ dropped and m_i calibrated; notes §6).
+// θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped and calibrated weights; c = 3ω|ξ|/m_i uncorrected),
+// and the per-particle terms of the force: D_i = κθ_i − (B_i/3) Σ_j ω ê_ij |ξ| V_j, B_i θ_i/3.
 void LpsModel::compute_dilatation(const double* y) {
   const int n = particles_.count();
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
   const double* wv = omega_volume_.data();
+  const double* cv = dilatation_volume_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    double sum = 0;
+    double theta = 0, moment = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const double* yj = y + 3 * nbr[b];
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b];  // e_ij
-      sum += wv[b] * xi[b] * extension;
+      theta += cv[b] * extension;
+      moment += wv[b] * xi[b] * extension;
     }
-    const double m = weighted_volume_[i];
-    dilatation_[i] = m > 0 ? 3.0 * sum / m : 0.0;
-    dilatation_term_[i] = dilatation_coef_[i] * dilatation_[i];
+    const double B = deviatoric_coef_[i];
+    // Σ_j ω ê |ξ| V_j = Σ_j ω e |ξ| V_j − θ m/3 (zero without the calibration)
+    const double deviatoric_moment = moment - theta * weighted_volume_[i] / 3.0;
+    dilatation_[i] = theta;
+    pressure_term_[i] = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
+    shift_term_[i] = B * theta / 3.0;
   }
 }
 
-// F_i = V_i Σ_j (t_ij + t_ji) n_ij V_j with t_ij = ½A_ij = ω_ij [|ξ| θ_i (3κ−5μ)/m_i +
-// e_ij 15μ/m_i] (Eqs 2–4 and 8 with the deviatoric extension e − θ|ξ|/3; notes §6).
+// F_i = −∂Π/∂y_i = V_i Σ_j (t_ij + t_ji) n_ij V_j (Eqs 2–3), with the bond force density
+// t_ij = ½A_ij = c_ij D_i + ω_ij (B_i e_ij − B_i θ_i |ξ|/3) (Eqs 4 and 8, corrected: notes §6).
 void LpsModel::forces(const double* y, double* f) {
   compute_dilatation(y);
   const int n = particles_.count();
@@ -66,13 +93,16 @@ void LpsModel::forces(const double* y, double* f) {
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
   const double* wv = omega_volume_.data();
-  const double* A = dilatation_term_.data();
+  const double* cv = dilatation_volume_.data();
+  const double* rv = reverse_volume_.data();
+  const double* D = pressure_term_.data();
   const double* B = deviatoric_coef_.data();
+  const double* S = shift_term_.data();
   const double* V = particles_.volume.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    const double Ai = A[i], Bi = B[i];
+    const double Di = D[i], Bi = B[i], Si = S[i];
     double f0 = 0, f1 = 0, f2 = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
@@ -80,7 +110,8 @@ void LpsModel::forces(const double* y, double* f) {
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const double extension = length - xi[b];
-      const double t = wv[b] * (xi[b] * (Ai + A[j]) + extension * (Bi + B[j]));
+      const double t = cv[b] * Di + rv[b] * D[j] +
+                       wv[b] * (extension * (Bi + B[j]) - xi[b] * (Si + S[j]));
       // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
       const double s = length > 0 ? t / length : 0.0;
       f0 += s * d0;
@@ -103,9 +134,9 @@ void LpsModel::energy_density(const double* y, double* w) {
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double theta = dilatation_[i];
+    const double* yi = y + 3 * i;
     double sum = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double* yi = y + 3 * i;
       const double* yj = y + 3 * nbr[b];
       const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2];
       const double deviatoric =
@@ -118,21 +149,21 @@ void LpsModel::energy_density(const double* y, double* w) {
 
 double LpsModel::stable_time_step() const {
   const int n = particles_.count();
-  std::vector<double> b(n), c_scale(n), omega(families_.directed_bonds()),
-      c_shape(families_.directed_bonds());
+  const std::size_t bonds = families_.directed_bonds();
+  std::vector<double> b(n), unit(n, 1.0), omega(bonds), c(bonds);
   for (int i = 0; i < n; ++i) {
     b[i] = 0.5 * deviatoric_coef_[i];  // b_i = 15μ/(2m_i)
-    c_scale[i] = weighted_volume_[i] > 0 ? 3.0 / weighted_volume_[i] : 0.0;
     for (int k = families_.offsets[i]; k < families_.offsets[i + 1]; ++k) {
-      omega[k] = materials_.horizon[i] / families_.reference_length[k];
-      c_shape[k] = omega[k] * families_.reference_length[k];  // c_ij = 3ω|ξ|/m_i
+      const double Vj = particles_.volume[families_.neighbors[k]];
+      omega[k] = omega_volume_[k] / Vj;
+      c[k] = std::abs(dilatation_volume_[k]) / Vj;  // |c_ij| keeps the Cauchy–Schwarz bound valid
     }
   }
-  return gershgorin_time_step(particles_, families_, materials_, {b, omega, c_scale, c_shape});
+  return gershgorin_time_step(particles_, families_, materials_, {b, omega, unit, c});
 }
 
 std::size_t LpsModel::bytes_per_bond() const {
-  return sizeof(int) + sizeof(double) + sizeof(double);  // neighbour, |ξ|, ω V_j
+  return sizeof(int) + 4 * sizeof(double);  // neighbour, |ξ|, ω V_j, c_ij V_j, c_ji V_j
 }
 
 }  // namespace fissure

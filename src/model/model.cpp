@@ -34,7 +34,8 @@ std::unique_ptr<Model> make_model(const Scene& scene) {
   }
   if (scene.config.bodies.front().material.model == ModelVariant::paper)
     return std::make_unique<PaperModel>(particles, scene.families, std::move(m));
-  return std::make_unique<LpsModel>(particles, scene.families, std::move(m));
+  return std::make_unique<LpsModel>(particles, scene.families, std::move(m),
+                                    scene.config.bodies.front().material.surface_correction);
 }
 
 }  // namespace fissure

@@ -95,7 +95,8 @@ Geometry read_geometry(const YamlReader& r, const YAML::Node& node, const std::s
 }
 
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
-  r.check_keys(node, path, {"model", "density", "bulk_modulus", "shear_modulus"});
+  r.check_keys(node, path,
+               {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction"});
   Material m;
   if (node["model"]) {
     const std::string model = r.string(node["model"], join(path, "model"));
@@ -109,6 +110,8 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
   m.density = r.positive(node["density"], join(path, "density"));
   m.bulk_modulus = r.positive(node["bulk_modulus"], join(path, "bulk_modulus"));
   m.shear_modulus = r.positive(node["shear_modulus"], join(path, "shear_modulus"));
+  if (node["surface_correction"])
+    m.surface_correction = r.boolean(node["surface_correction"], join(path, "surface_correction"));
   return m;
 }
 
@@ -175,6 +178,10 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   for (std::size_t i = 1; i < c.bodies.size(); ++i)
     if (c.bodies[i].material.model != c.bodies[0].material.model)
       r.fail(indexed("bodies", i) + ".material.model", "all bodies must use the same model");
+  for (std::size_t i = 1; i < c.bodies.size(); ++i)
+    if (c.bodies[i].material.surface_correction != c.bodies[0].material.surface_correction)
+      r.fail(indexed("bodies", i) + ".material.surface_correction",
+             "all bodies must use the same surface_correction");
   if (const auto n = root["constraints"]) {
     if (!n.IsSequence()) r.fail("constraints", "expected a list");
     for (std::size_t i = 0; i < n.size(); ++i)

@@ -35,6 +35,7 @@ struct Material {
   double density = 0;
   double bulk_modulus = 0;
   double shear_modulus = 0;
+  bool surface_correction = true;  // lps only: calibrated dilatation weights (docs/model.md)
 };
 
 struct Body {

@@ -76,16 +76,31 @@ TEST(Primitives, SmallShapesStillMesh) {
 }
 
 TEST(Primitives, InvalidArgumentsRejected) {
-  expect_input_error([] { tetrahedralize_box({0, 0, 0}, {1, 0, 1}, 0.1); }, "",
-                     "box max must exceed box min");
-  expect_input_error([] { tetrahedralize_box({0, 0, 0}, {1, 1, 1}, -0.1); }, "",
-                     "edge length must be positive");
-  expect_input_error([] { tetrahedralize_sphere({0, 0, 0}, 0.0, 0.1); }, "",
-                     "sphere radius must be positive");
-  expect_input_error([] { tetrahedralize_cylinder({0, 0, 0}, {0, 0, 0}, 1.0, 0.1); }, "",
-                     "cylinder length");
-  expect_input_error([] { tetrahedralize_box({0, 0, 0}, {1, 1, 1}, 1e-4); }, "",
-                     "use a larger edge length");
+  expect_input_error(
+      [] {
+        tetrahedralize_box({0, 0, 0}, {1, 0, 1}, 0.1);
+      },
+      "", "box max must exceed box min");
+  expect_input_error(
+      [] {
+        tetrahedralize_box({0, 0, 0}, {1, 1, 1}, -0.1);
+      },
+      "", "edge length must be positive");
+  expect_input_error(
+      [] {
+        tetrahedralize_sphere({0, 0, 0}, 0.0, 0.1);
+      },
+      "", "sphere radius must be positive");
+  expect_input_error(
+      [] {
+        tetrahedralize_cylinder({0, 0, 0}, {0, 0, 0}, 1.0, 0.1);
+      },
+      "", "cylinder length");
+  expect_input_error(
+      [] {
+        tetrahedralize_box({0, 0, 0}, {1, 1, 1}, 1e-4);
+      },
+      "", "use a larger edge length");
 }
 
 }  // namespace

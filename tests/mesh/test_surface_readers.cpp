@@ -1,7 +1,7 @@
 // read_surface: every format reads the unit cube; malformed files give clear InputErrors.
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "cube_fixtures.hpp"
@@ -16,8 +16,11 @@ struct CubeFile {
   std::string (*contents)();
 };
 
+void PrintTo(const CubeFile& file, std::ostream* os) { *os << file.name; }
+
 class CubeFormats : public MeshFileTest, public ::testing::WithParamInterface<CubeFile> {};
 
+// STL corners are merged into 8 vertices too.
 TEST_P(CubeFormats, ReadsEightCornersAndTwelveTriangles) {
   const std::string file = write(GetParam().name, GetParam().contents());
   const SurfaceMesh s = read_surface(file);
@@ -45,11 +48,25 @@ INSTANTIATE_TEST_SUITE_P(Surface, CubeFormats,
                            return name;
                          });
 
+using SurfaceReaders = MeshFileTest;
+
+TEST_F(SurfaceReaders, OffCountsOnHeaderLine) {
+  std::string text = cube_off();
+  text.replace(0, text.find("0 0 0\n"), "OFF 8 6 0\n");
+  EXPECT_EQ(read_surface(write("cube.off", text)).triangles.size(), 3u * 12u);
+}
+
 using SurfaceErrors = MeshFileTest;
 
 TEST_F(SurfaceErrors, MissingFile) {
   expect_input_error([&] { read_surface(path("absent.obj")); }, path("absent.obj"),
                      "file not found");
+}
+
+TEST_F(SurfaceErrors, DirectoryInsteadOfFile) {
+  std::filesystem::create_directory(path("folder.obj"));
+  expect_input_error([&] { read_surface(path("folder.obj")); }, path("folder.obj"),
+                     "not a regular file");
 }
 
 TEST_F(SurfaceErrors, UnknownExtension) {

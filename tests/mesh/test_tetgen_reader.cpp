@@ -1,7 +1,8 @@
 // read_tetgen: .node/.ele round trip, numbering, orientation and malformed files.
 #include <gtest/gtest.h>
 
-#include <cstdio>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "mesh/geometry.hpp"
@@ -10,36 +11,29 @@
 namespace fissure::test {
 namespace {
 
-std::string format_double(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
-}
-
-// .node with one attribute and boundary markers; .ele with `corners` nodes per tet.
-void write_tetgen(const MeshFileTest& files, const std::string& base, const TetMesh& mesh,
-                  int first, int corners = 4) {
-  std::string node = "# nodes\n" + std::to_string(mesh.vertex_count()) + " 3 1 1\n";
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    node += std::to_string(v + first);
-    for (int c = 0; c < 3; ++c) node += " " + format_double(mesh.vertices[3 * v + c]);
-    node += " 0.5 1\n";
-  }
-  std::string ele = std::to_string(mesh.tet_count()) + " " + std::to_string(corners) + " 0\n";
-  for (int t = 0; t < mesh.tet_count(); ++t) {
-    ele += std::to_string(t + first);
-    for (int k = 0; k < corners; ++k) ele += " " + std::to_string(mesh.tets[4 * t + k % 4] + first);
-    ele += "\n";
-  }
-  files.write(base + ".node", node);
-  files.write(base + ".ele", ele);
-}
-
 class TetgenReader : public MeshFileTest {
  protected:
   std::string write_node(const std::string& text) { return write("m.node", text); }
   std::string write_ele(const std::string& text) { return write("m.ele", text); }
-  // A unit right tet plus `extra` as the .ele body lines.
+  // .node with one attribute and boundary markers; .ele with `corners` nodes per tet.
+  void write_tetgen(const std::string& base, const TetMesh& mesh, int first, int corners = 4) {
+    std::ostringstream node, ele;
+    node << std::setprecision(17) << "# nodes\n" << mesh.vertex_count() << " 3 1 1\n";
+    for (int v = 0; v < mesh.vertex_count(); ++v) {
+      node << v + first;
+      for (int c = 0; c < 3; ++c) node << ' ' << mesh.vertices[3 * v + c];
+      node << " 0.5 1\n";
+    }
+    ele << mesh.tet_count() << ' ' << corners << " 0\n";
+    for (int t = 0; t < mesh.tet_count(); ++t) {
+      ele << t + first;
+      for (int k = 0; k < corners; ++k) ele << ' ' << mesh.tets[4 * t + k % 4] + first;
+      ele << '\n';
+    }
+    write(base + ".node", node.str());
+    write(base + ".ele", ele.str());
+  }
+  // Five nodes, a unit right tet on the first four, and the given .ele text.
   void write_single(const std::string& ele) {
     write_node("5 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n");
     write_ele(ele);
@@ -48,7 +42,7 @@ class TetgenReader : public MeshFileTest {
 
 TEST_F(TetgenReader, RoundTripOneBasedByAnyName) {
   const TetMesh mesh = tetrahedralize_box({0, 0, 0}, {1, 0.5, 0.25}, 0.25);
-  write_tetgen(*this, "box", mesh, 1);
+  write_tetgen("box", mesh, 1);
   for (const std::string& name : {path("box"), path("box.node"), path("box.ele")}) {
     const TetMesh read = read_tetgen(name);
     EXPECT_EQ(read.vertices, mesh.vertices);
@@ -58,7 +52,7 @@ TEST_F(TetgenReader, RoundTripOneBasedByAnyName) {
 
 TEST_F(TetgenReader, RoundTripZeroBasedThroughLoadMeshFile) {
   const TetMesh mesh = tetrahedralize_box({0, 0, 0}, {1, 1, 1}, 0.5);
-  write_tetgen(*this, "cube", mesh, 0);
+  write_tetgen("cube", mesh, 0);
   const TetMesh read = load_mesh_file(path("cube.node"), 123.0);
   EXPECT_EQ(read.vertices, mesh.vertices);
   EXPECT_EQ(read.tets, mesh.tets);
@@ -66,19 +60,19 @@ TEST_F(TetgenReader, RoundTripZeroBasedThroughLoadMeshFile) {
 
 TEST_F(TetgenReader, TenNodeTetsKeepCorners) {
   const TetMesh mesh = tetrahedralize_box({0, 0, 0}, {1, 1, 1}, 0.5);
-  write_tetgen(*this, "quadratic", mesh, 1, 10);
+  write_tetgen("quadratic", mesh, 1, 10);
   EXPECT_EQ(read_tetgen(path("quadratic.ele")).tets, mesh.tets);
 }
 
 TEST_F(TetgenReader, AllInvertedAreFlipped) {
-  write_single("2 4 0\n1 1 3 2 4\n2 2 3 4 5\n");
+  write_single("2 4 0\n1 1 3 2 4\n2 3 2 4 5\n");
   const TetMesh mesh = read_tetgen(path("m"));
   EXPECT_GT(min_volume(mesh), 0.0);
   EXPECT_NEAR(total_volume(mesh), 1.0 / 6.0 + 1.0 / 3.0, 1e-15);
 }
 
 TEST_F(TetgenReader, MixedInversionRejected) {
-  write_single("2 4 0\n1 1 2 3 4\n2 2 3 4 5\n");
+  write_single("2 4 0\n1 1 2 3 4\n2 3 2 4 5\n");
   expect_input_error([&] { read_tetgen(path("m")); }, path("m.ele"),
                      "tet 2 is inverted (negative volume) while 1 of 2");
 }

@@ -60,9 +60,9 @@ Ratio energy_ratio(Model& model, const Particles& p, const double F[9], double e
 // force to round-off, and LPS gives θ = tr ε exactly (m_i is summed over the family).
 TEST(Homogeneous, LatticeInteriorForceIsZeroAndDilatationIsTraceOfStrain) {
   const double h = 0.01;
-  const Scene scene = lattice_scene(14, h, "lps");
+  const Scene scene = lattice_scene(18, h, "lps");
   auto model = make_model(scene);
-  const auto members = test::interior(scene.particles, 13 * h, 2 * 2.9 * h + 1e-9);
+  const auto members = test::interior(scene.particles, 17 * h, 2 * 2.9 * h + 1e-9);
   ASSERT_GT(members.size(), 8u);
   const double eps = 1e-4;
   const double c = std::cos(std::numbers::pi / 2), s = std::sin(std::numbers::pi / 2);
@@ -140,6 +140,15 @@ TEST(Homogeneous, TetBlockDilatationMatchesTraceOfStrain) {
   const auto y = test::deform(scene.particles, F);
   std::vector<double> f(y.size());
   model->forces(y.data(), f.data());
+  double interior_force = 0, all_force = 0;
+  for (int i : members) interior_force += std::hypot(f[3 * i], f[3 * i + 1], f[3 * i + 2]) / members.size();
+  for (int i = 0; i < scene.particles.count(); ++i)
+    all_force = std::max(all_force, std::hypot(f[3 * i], f[3 * i + 1], f[3 * i + 2]));
+  std::printf("mean interior |F| / max |F| = %.3e\n", interior_force / all_force);
+  // Not zero: an irregular family has a first moment Σ V_j ξ/|ξ| ≠ 0, and under εI each bond
+  // force is ω|ξ| times a constant, so the residual is that moment (docs/model.md). It stays a
+  // small fraction of the surface force; a lattice (above) gives zero.
+  EXPECT_LT(interior_force / all_force, 0.05);
   double mean = 0, spread = 0;
   for (int i : members) mean += model->dilatation()[i] / (3 * eps) / members.size();
   for (int i : members) spread = std::max(spread, std::abs(model->dilatation()[i] / (3 * eps) - mean));

@@ -19,7 +19,9 @@ TEST(Families, SymmetricSortedAndWithinHorizon) {
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
       const int j = f.neighbors[b];
       ASSERT_NE(i, j);
-      if (b > f.offsets[i]) ASSERT_LT(f.neighbors[b - 1], j);
+      if (b > f.offsets[i]) {
+        ASSERT_LT(f.neighbors[b - 1], j);
+      }
       EXPECT_LE(f.reference_length[b], delta);
       const auto begin = f.neighbors.begin() + f.offsets[j];
       const auto end = f.neighbors.begin() + f.offsets[j + 1];
