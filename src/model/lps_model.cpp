@@ -17,7 +17,7 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   const auto& xi = families.reference_length;
   const std::size_t bonds = families.directed_bonds();
   std::vector<double> omega(bonds);
-  omega_volume_.resize(bonds);
+  bond_omega_.resize(bonds);
   weighted_volume_.resize(n);
   deviatoric_coef_.resize(n);
   pressure_term_.resize(n);
@@ -27,9 +27,9 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   for (int i = 0; i < n; ++i) {
     double m = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      omega[b] = materials_.horizon[i] / xi[b];  // Eq 5
-      omega_volume_[b] = omega[b] * particles.volume[nbr[b]];
-      m += omega_volume_[b] * xi[b] * xi[b];  // m_i = Σ ω|ξ|²V_j (notes §6)
+      bond_omega_[b] = static_cast<float>(materials_.horizon[i] / xi[b]);  // Eq 5
+      omega[b] = bond_omega_[b];
+      m += omega[b] * xi[b] * xi[b] * particles.volume[nbr[b]];  // m_i = Σ ω|ξ|²V_j (notes §6)
     }
     weighted_volume_[i] = m;
     deviatoric_coef_[i] = m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0;
@@ -42,16 +42,16 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
       for (int b = off[i]; b < off[i + 1]; ++b)
         c[b] = weighted_volume_[i] > 0 ? 3.0 * omega[b] * xi[b] / weighted_volume_[i] : 0.0;
   }
-  dilatation_volume_.resize(bonds);
-  reverse_volume_.resize(bonds);
+  bond_weight_.resize(bonds);
+  bond_reverse_weight_.resize(bonds);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       const int reverse = static_cast<int>(
           std::lower_bound(nbr.begin() + off[j], nbr.begin() + off[j + 1], i) - nbr.begin());
-      dilatation_volume_[b] = c[b] * particles.volume[j];
-      reverse_volume_[b] = c[reverse] * particles.volume[j];
+      bond_weight_[b] = static_cast<float>(c[b]);
+      bond_reverse_weight_[b] = static_cast<float>(c[reverse]);
     }
 }
 
@@ -62,18 +62,20 @@ void LpsModel::compute_dilatation(const double* y) {
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
-  const double* wv = omega_volume_.data();
-  const double* cv = dilatation_volume_.data();
+  const float* omega = bond_omega_.data();
+  const float* c = bond_weight_.data();
+  const double* V = particles_.volume.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
     double theta = 0, moment = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double* yj = y + 3 * nbr[b];
+      const int j = nbr[b];
+      const double* yj = y + 3 * j;
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-      const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b];  // e_ij
-      theta += cv[b] * extension;
-      moment += wv[b] * xi[b] * extension;
+      const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j];  // e_ij V_j
+      theta += c[b] * extension;
+      moment += omega[b] * xi[b] * extension;
     }
     const double B = deviatoric_coef_[i];
     // Σ_j ω ê |ξ| V_j = Σ_j ω e |ξ| V_j − θ m/3 (zero without the calibration)
@@ -92,9 +94,9 @@ void LpsModel::forces(const double* y, double* f) {
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
-  const double* wv = omega_volume_.data();
-  const double* cv = dilatation_volume_.data();
-  const double* rv = reverse_volume_.data();
+  const float* omega = bond_omega_.data();
+  const float* c = bond_weight_.data();
+  const float* c_reverse = bond_reverse_weight_.data();
   const double* D = pressure_term_.data();
   const double* B = deviatoric_coef_.data();
   const double* S = shift_term_.data();
@@ -110,10 +112,10 @@ void LpsModel::forces(const double* y, double* f) {
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const double extension = length - xi[b];
-      const double t = cv[b] * Di + rv[b] * D[j] +
-                       wv[b] * (extension * (Bi + B[j]) - xi[b] * (Si + S[j]));
+      const double t = c[b] * Di + c_reverse[b] * D[j] +
+                       omega[b] * (extension * (Bi + B[j]) - xi[b] * (Si + S[j]));
       // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
-      const double s = length > 0 ? t / length : 0.0;
+      const double s = length > 0 ? t * V[j] / length : 0.0;
       f0 += s * d0;
       f1 += s * d1;
       f2 += s * d2;
@@ -141,7 +143,7 @@ void LpsModel::energy_density(const double* y, double* w) {
       const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2];
       const double deviatoric =
           std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b] - theta * xi[b] / 3.0;
-      sum += omega_volume_[b] * deviatoric * deviatoric;
+      sum += bond_omega_[b] * particles_.volume[nbr[b]] * deviatoric * deviatoric;
     }
     w[i] = 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * deviatoric_coef_[i] * sum;
   }
@@ -151,19 +153,16 @@ double LpsModel::stable_time_step() const {
   const int n = particles_.count();
   const std::size_t bonds = families_.directed_bonds();
   std::vector<double> b(n), unit(n, 1.0), omega(bonds), c(bonds);
-  for (int i = 0; i < n; ++i) {
-    b[i] = 0.5 * deviatoric_coef_[i];  // b_i = 15μ/(2m_i)
-    for (int k = families_.offsets[i]; k < families_.offsets[i + 1]; ++k) {
-      const double Vj = particles_.volume[families_.neighbors[k]];
-      omega[k] = omega_volume_[k] / Vj;
-      c[k] = std::abs(dilatation_volume_[k]) / Vj;  // |c_ij| keeps the Cauchy–Schwarz bound valid
-    }
+  for (int i = 0; i < n; ++i) b[i] = 0.5 * deviatoric_coef_[i];  // b_i = 15μ/(2m_i)
+  for (std::size_t k = 0; k < bonds; ++k) {
+    omega[k] = bond_omega_[k];
+    c[k] = std::abs(bond_weight_[k]);  // |c_ij| keeps the Cauchy–Schwarz bound valid
   }
   return gershgorin_time_step(particles_, families_, materials_, {b, omega, unit, c});
 }
 
 std::size_t LpsModel::bytes_per_bond() const {
-  return sizeof(int) + 4 * sizeof(double);  // neighbour, |ξ|, ω V_j, c_ij V_j, c_ji V_j
+  return sizeof(int) + sizeof(double) + 3 * sizeof(float);  // neighbour, |ξ|, ω, c_ij, c_ji
 }
 
 }  // namespace fissure

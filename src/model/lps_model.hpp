@@ -21,10 +21,12 @@ class LpsModel final : public Model {
  private:
   void compute_dilatation(const double* y);
 
-  std::vector<double> omega_volume_;        // ω_ij V_j per bond (Eq 5 times V_j)
-  std::vector<double> dilatation_volume_;   // c_ij V_j per bond
-  std::vector<double> reverse_volume_;      // c_ji V_j per bond (the weight of the same bond in j's row)
-  std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j
+  // Per bond, single precision: the same rounded value serves both rows of a pair, so
+  // action equals reaction exactly; V_j is applied in double precision in the kernels.
+  std::vector<float> bond_omega_;           // ω_ij (Eq 5)
+  std::vector<float> bond_weight_;          // c_ij
+  std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
+  std::vector<double> weighted_volume_;  // m_i = Σ_j ω_ij |ξ_ij|² V_j
   std::vector<double> deviatoric_coef_;     // B_i = 15μ_i / m_i
   std::vector<double> pressure_term_;       // D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j, per force call
   std::vector<double> shift_term_;          // B_i θ_i / 3, per force call
