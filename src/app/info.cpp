@@ -25,7 +25,8 @@ void print_info(const Config& config) {
   fmt::print("integrator: {}\n", config.integrator.type);
   fmt::print("stable dt estimate: {:.4g} s\n", stable_dt);
   if (config.time.dt_auto)
-    fmt::print("dt: {:.4g} s (auto, safety {})\n", config.time.safety * stable_dt, config.time.safety);
+    fmt::print("dt: {:.4g} s (auto, safety {})\n", config.time.safety * stable_dt,
+               config.time.safety);
   else
     fmt::print("dt: {:.4g} s{}\n", config.time.dt,
                config.time.dt > stable_dt ? " (above the stable estimate)" : "");

@@ -1,8 +1,8 @@
 // fissure: run a scene, or describe it.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "app/info.hpp"
@@ -11,7 +11,8 @@
 #include "scene/config.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"Fissure: peridynamics for elastoplastic solids that bend, yield, crack and shatter"};
+  CLI::App app{
+      "Fissure: peridynamics for elastoplastic solids that bend, yield, crack and shatter"};
   app.require_subcommand(1);
   std::string config_path, out_dir;
   std::vector<std::string> overrides;
@@ -42,10 +43,11 @@ int main(int argc, char** argv) {
     fissure::RunOptions options;
     options.progress = isatty(fileno(stderr));
     const auto s = fissure::run_simulation(config, options);
-    fmt::print("{}: {} particles, {} bonds, {} steps of {:.3g} s in {:.2f} s ({:.3g} s/step), "
-               "energy drift {:.2e}, output in {}\n",
-               config.name, s.particles, s.bonds, s.steps, s.dt, s.wall_seconds,
-               s.seconds_per_step, s.energy_drift, config.output.dir);
+    fmt::print(
+        "{}: {} particles, {} bonds, {} steps of {:.3g} s in {:.2f} s ({:.3g} s/step), "
+        "energy drift {:.2e}, output in {}\n",
+        config.name, s.particles, s.bonds, s.steps, s.dt, s.wall_seconds, s.seconds_per_step,
+        s.energy_drift, config.output.dir);
     return 0;
   } catch (const fissure::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

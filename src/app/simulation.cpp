@@ -44,7 +44,8 @@ void write_summary(const std::string& path, const RunSummary& s) {
     out << fmt::format(
         "{{\n  \"status\": \"{}\",\n  \"particles\": {},\n  \"bonds\": {},\n  \"steps\": {},\n"
         "  \"dt\": {:.9g},\n  \"stable_dt\": {:.9g},\n  \"wall_seconds\": {:.6g},\n"
-        "  \"seconds_per_step\": {:.6g},\n  \"setup_seconds\": {:.6g},\n  \"peak_rss_mb\": {:.6g},\n"
+        "  \"seconds_per_step\": {:.6g},\n  \"setup_seconds\": {:.6g},\n  \"peak_rss_mb\": "
+        "{:.6g},\n"
         "  \"energy_drift\": {:.6g}\n}}\n",
         s.status, s.particles, s.bonds, s.steps, s.dt, s.stable_dt, s.wall_seconds,
         s.seconds_per_step, s.setup_seconds, s.peak_rss_mb, s.energy_drift);
@@ -94,7 +95,8 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
                "explicit step; the run may blow up\n",
                config.file, config.time.dt, summary_.stable_dt);
   std::filesystem::create_directories(config.output.dir);
-  probes_ = std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles);
+  probes_ =
+      std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles);
   pvd_ = std::make_unique<PvdIndex>(config.output.dir + "/particles.pvd");
   state_.position = scene_.particles.reference;
   state_.velocity = scene_.particles.velocity;
@@ -104,7 +106,8 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
 void Simulation::write_frame() {
   const int n = scene_.particles.count();
   std::vector<double> displacement(3 * n), damage(n, 0.0);
-  for (int k = 0; k < 3 * n; ++k) displacement[k] = state_.position[k] - scene_.particles.reference[k];
+  for (int k = 0; k < 3 * n; ++k)
+    displacement[k] = state_.position[k] - scene_.particles.reference[k];
   const std::string file = fmt::format("particles_{:06d}.vtu", frame_++);
   write_particles_vtu(config_.output.dir + "/" + file, state_.position,
                       {{"displacement", 3, &displacement},
@@ -119,7 +122,8 @@ void Simulation::sample_energy() {
   const double kinetic = kinetic_energy(scene_.particles.mass, state_.velocity);
   const double elastic = model_->elastic_energy(state_.position.data());
   const double total =
-      kinetic + elastic + gravitational_energy(scene_.particles.mass, state_.position, config_.gravity);
+      kinetic + elastic +
+      gravitational_energy(scene_.particles.mass, state_.position, config_.gravity);
   if (summary_.steps == 0) initial_energy_ = total;
   energy_scale_ = std::max(energy_scale_, kinetic + std::abs(elastic));
   last_energy_ = total - initial_energy_ - constraint_work_ + damping_loss_;
@@ -131,8 +135,8 @@ void Simulation::report_progress(Clock::time_point start, bool final) {
   const double elapsed = seconds_since(start);
   const double rate = summary_.steps / std::max(elapsed, 1e-9);
   const double remaining = (config_.time.end - state_.time) / summary_.dt / std::max(rate, 1e-9);
-  fmt::print(stderr, "\rt = {:.4g} / {:.4g} s   {:.0f} steps/s   ETA {:.0f} s   {}",
-             state_.time, config_.time.end, rate, std::max(remaining, 0.0), final ? "\n" : "");
+  fmt::print(stderr, "\rt = {:.4g} / {:.4g} s   {:.0f} steps/s   ETA {:.0f} s   {}", state_.time,
+             config_.time.end, rate, std::max(remaining, 0.0), final ? "\n" : "");
 }
 
 RunSummary Simulation::run() {
@@ -160,7 +164,8 @@ RunSummary Simulation::run() {
     integrator_->step(*dynamics_, state_, dt);
     constraint_work_ += dt * dynamics_->constraint_power();
     if (config_.damping > 0)
-      damping_loss_ += dt * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
+      damping_loss_ +=
+          dt * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
     ++summary_.steps;
     if (const int bad = first_nonfinite(state_); bad >= 0) {
       summary_.status = "nonfinite";

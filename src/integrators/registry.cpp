@@ -38,9 +38,10 @@ std::unique_ptr<Integrator> make_integrator(const std::string& type, const std::
   const std::string hint = nearest(type, names);
   std::string valid;
   for (const auto& n : names) valid += (valid.empty() ? "" : ", ") + n;
-  throw InputError(file, "integrator.type",
-                   fmt::format("unknown integrator '{}'{} (valid: {})", type,
-                               hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), valid));
+  throw InputError(
+      file, "integrator.type",
+      fmt::format("unknown integrator '{}'{} (valid: {})", type,
+                  hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), valid));
 }
 
 }  // namespace fissure

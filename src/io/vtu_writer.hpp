@@ -8,8 +8,8 @@ namespace fissure {
 
 struct PointField {
   std::string name;
-  int components;                    // 1 or 3
-  const std::vector<double>* values; // components * point count
+  int components;                     // 1 or 3
+  const std::vector<double>* values;  // components * point count
 };
 
 void write_particles_vtu(const std::string& path, const std::vector<double>& points,

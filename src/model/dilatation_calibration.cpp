@@ -30,7 +30,8 @@ std::vector<double> dilatation_weights(const Particles& particles, const Familie
     const int begin = families.offsets[i], end = families.offsets[i + 1];
     auto direction = [&](int b, double u[3]) {
       const int j = families.neighbors[b];
-      for (int k = 0; k < 3; ++k) u[k] = (x[3 * j + k] - x[3 * i + k]) / families.reference_length[b];
+      for (int k = 0; k < 3; ++k)
+        u[k] = (x[3 * j + k] - x[3 * i + k]) / families.reference_length[b];
     };
     Matrix6 moment = Matrix6::Zero();
     for (int b = begin; b < end; ++b) {
@@ -43,11 +44,13 @@ std::vector<double> dilatation_weights(const Particles& particles, const Familie
     Vector6 trace;
     trace << 1, 1, 1, 0, 0, 0;
     const Eigen::SelfAdjointEigenSolver<Matrix6> eigen(moment);
-    const bool determined = end - begin >= 6 && eigen.eigenvalues()(0) > 1e-6 * eigen.eigenvalues()(5);
-    const Vector6 K = determined ? Vector6(eigen.eigenvectors() *
-                                           (eigen.eigenvalues().cwiseInverse().asDiagonal() *
-                                            (eigen.eigenvectors().transpose() * trace)))
-                                 : Vector6::Zero();
+    const bool determined =
+        end - begin >= 6 && eigen.eigenvalues()(0) > 1e-6 * eigen.eigenvalues()(5);
+    const Vector6 K =
+        determined
+            ? Vector6(eigen.eigenvectors() * (eigen.eigenvalues().cwiseInverse().asDiagonal() *
+                                              (eigen.eigenvectors().transpose() * trace)))
+            : Vector6::Zero();
     for (int b = begin; b < end; ++b) {
       const double xi = families.reference_length[b];
       if (!determined) {

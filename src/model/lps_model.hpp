@@ -26,10 +26,10 @@ class LpsModel final : public Model {
   std::vector<float> bond_omega_;           // ω_ij (Eq 5)
   std::vector<float> bond_weight_;          // c_ij
   std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
-  std::vector<double> weighted_volume_;  // m_i = Σ_j ω_ij |ξ_ij|² V_j
+  std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j
   std::vector<double> deviatoric_coef_;     // B_i = 15μ_i / m_i
-  std::vector<double> pressure_term_;       // D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j, per force call
-  std::vector<double> shift_term_;          // B_i θ_i / 3, per force call
+  std::vector<double> pressure_term_;  // D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j, per force call
+  std::vector<double> shift_term_;     // B_i θ_i / 3, per force call
 };
 
 }  // namespace fissure

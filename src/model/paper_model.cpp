@@ -12,14 +12,16 @@ namespace {
 constexpr double pi = std::numbers::pi;
 
 // a = 9κ/(8πδ⁴), b = 15μ/(2πδ⁵) (Eq 10); d = 9/(4πδ⁴) (Eq 6).
-double a_constant(double kappa, double delta) { return 9.0 * kappa / (8.0 * pi * std::pow(delta, 4)); }
+double a_constant(double kappa, double delta) {
+  return 9.0 * kappa / (8.0 * pi * std::pow(delta, 4));
+}
 double b_constant(double mu, double delta) { return 15.0 * mu / (2.0 * pi * std::pow(delta, 5)); }
 double d_constant(double delta) { return 9.0 / (4.0 * pi * std::pow(delta, 4)); }
 
 struct BondGeometry {
-  double n[3];     // deformed direction
-  double length;   // |y_j − y_i|
-  double lambda;   // Λ = n·ξ/|ξ|
+  double n[3];    // deformed direction
+  double length;  // |y_j − y_i|
+  double lambda;  // Λ = n·ξ/|ξ|
 };
 
 BondGeometry bond_geometry(const double* x, const double* y, int i, int j, double xi) {
@@ -105,7 +107,8 @@ void PaperModel::energy_density(const double* y, double* w) {
       deviatoric += wv * e * e;
     }
     theta *= d_constant(delta);
-    const double alpha = 0.5 * (materials_.bulk_modulus[i] - 5.0 / 3.0 * materials_.shear_modulus[i]);
+    const double alpha =
+        0.5 * (materials_.bulk_modulus[i] - 5.0 / 3.0 * materials_.shear_modulus[i]);
     w[i] = alpha * theta * theta + b_constant(materials_.shear_modulus[i], delta) * deviatoric;
   }
 }

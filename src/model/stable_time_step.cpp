@@ -29,9 +29,10 @@ double gershgorin_time_step(const Particles& particles, const Families& families
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       // C_ij = 2(b_i ω_ij + b_j ω_ji) + 2α_i⁺ S_i c_ij + 2α_j⁺ S_j c_ji (notes §4)
-      const double c = 2.0 * (k.b[i] + k.b[j]) * k.omega[b] +
-                       2.0 * k.c_shape[b] *
-                           (alpha_plus[i] * S[i] * k.c_scale[i] + alpha_plus[j] * S[j] * k.c_scale[j]);
+      const double c =
+          2.0 * (k.b[i] + k.b[j]) * k.omega[b] +
+          2.0 * k.c_shape[b] *
+              (alpha_plus[i] * S[i] * k.c_scale[i] + alpha_plus[j] * S[j] * k.c_scale[j]);
       row += c * V[j];
     }
     if (row > 0) dt = std::min(dt, std::sqrt(2.0 * materials.density[i] / row));

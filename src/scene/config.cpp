@@ -13,15 +13,17 @@ namespace fissure {
 
 bool Region::contains(const double* p) const {
   if (kind == Kind::box)
-    return p[0] >= min[0] && p[0] <= max[0] && p[1] >= min[1] && p[1] <= max[1] &&
-           p[2] >= min[2] && p[2] <= max[2];
+    return p[0] >= min[0] && p[0] <= max[0] && p[1] >= min[1] && p[1] <= max[1] && p[2] >= min[2] &&
+           p[2] <= max[2];
   const double dx = p[0] - center[0], dy = p[1] - center[1], dz = p[2] - center[2];
   return dx * dx + dy * dy + dz * dz <= radius * radius;
 }
 
 namespace {
 
-std::string indexed(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
+std::string indexed(const std::string& path, std::size_t i) {
+  return fmt::format("{}[{}]", path, i);
+}
 
 void check_box(const YamlReader& r, const Vec3& min, const Vec3& max, const std::string& path) {
   for (int k = 0; k < 3; ++k)
@@ -117,8 +119,7 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
 
 Body read_body(const YamlReader& r, const YAML::Node& node, const std::string& path,
                std::size_t index) {
-  r.check_keys(node, path,
-               {"name", "geometry", "resolution", "horizon", "material", "velocity"});
+  r.check_keys(node, path, {"name", "geometry", "resolution", "horizon", "material", "velocity"});
   Body b;
   b.name = node["name"] ? r.string(node["name"], join(path, "name")) : fmt::format("body{}", index);
   b.geometry = read_geometry(r, node["geometry"], join(path, "geometry"));
@@ -137,7 +138,8 @@ Constraint read_constraint(const YamlReader& r, const YAML::Node& node, const st
   const bool moves = static_cast<bool>(node["velocity"]);
   if (c.fix == moves) r.fail(path, "give either fix: true or velocity: [vx, vy, vz]");
   if (moves) c.velocity = r.vec3(node["velocity"], join(path, "velocity"));
-  if (node["release_at"]) c.release_at = r.non_negative(node["release_at"], join(path, "release_at"));
+  if (node["release_at"])
+    c.release_at = r.non_negative(node["release_at"], join(path, "release_at"));
   return c;
 }
 
@@ -158,8 +160,9 @@ TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
 }
 
 Config read_config(const YamlReader& r, const YAML::Node& root) {
-  r.check_keys(root, "", {"name", "time", "integrator", "gravity", "bodies", "constraints",
-                          "damping", "probes", "output"});
+  r.check_keys(root, "",
+               {"name", "time", "integrator", "gravity", "bodies", "constraints", "damping",
+                "probes", "output"});
   Config c;
   c.file = r.file();
   c.name = root["name"] ? r.string(root["name"], "name")
@@ -193,7 +196,8 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     for (std::size_t i = 0; i < n.size(); ++i) {
       const std::string p = indexed("probes", i);
       r.check_keys(n[i], p, {"name", "region"});
-      Probe probe{r.string(n[i]["name"], join(p, "name")), read_region(r, n[i]["region"], join(p, "region"))};
+      Probe probe{r.string(n[i]["name"], join(p, "name")),
+                  read_region(r, n[i]["region"], join(p, "region"))};
       for (const auto& other : c.probes)
         if (other.name == probe.name) r.fail(join(p, "name"), "duplicate probe name");
       c.probes.push_back(probe);
@@ -202,9 +206,11 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   const YAML::Node out = root["output"];
   if (out) r.check_keys(out, "output", {"dir", "every", "probe_every"});
   c.output.dir = out && out["dir"] ? r.string(out["dir"], "output.dir") : "out/" + c.name;
-  c.output.every = out && out["every"] ? r.positive(out["every"], "output.every") : c.time.end / 100;
-  c.output.probe_every =
-      out && out["probe_every"] ? r.positive(out["probe_every"], "output.probe_every") : c.output.every;
+  c.output.every =
+      out && out["every"] ? r.positive(out["every"], "output.every") : c.time.end / 100;
+  c.output.probe_every = out && out["probe_every"]
+                             ? r.positive(out["probe_every"], "output.probe_every")
+                             : c.output.every;
   return c;
 }
 
@@ -216,8 +222,9 @@ Config parse_config(const std::string& yaml_text, const std::string& file,
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
-    throw InputError(file, "", fmt::format("not valid YAML (line {}, column {}): {}",
-                                           e.mark.line + 1, e.mark.column + 1, e.msg));
+    throw InputError(file, "",
+                     fmt::format("not valid YAML (line {}, column {}): {}", e.mark.line + 1,
+                                 e.mark.column + 1, e.msg));
   }
   if (!root.IsMap()) throw InputError(file, "", "expected a YAML map at the top level");
   for (const auto& assignment : overrides) apply_override(root, assignment, file);

@@ -19,13 +19,13 @@ struct Region {
 
 struct Geometry {
   enum class Kind { box, sphere, cylinder, mesh, points } kind = Kind::box;
-  Vec3 min{}, max{};         // box
-  Vec3 center{};             // sphere
-  Vec3 p0{}, p1{};           // cylinder axis end points
-  double radius = 0;         // sphere, cylinder
-  std::string file;          // mesh, points (resolved against the config's folder)
-  double scale = 1.0;        // mesh, points
-  Vec3 translate{};          // mesh, points
+  Vec3 min{}, max{};   // box
+  Vec3 center{};       // sphere
+  Vec3 p0{}, p1{};     // cylinder axis end points
+  double radius = 0;   // sphere, cylinder
+  std::string file;    // mesh, points (resolved against the config's folder)
+  double scale = 1.0;  // mesh, points
+  Vec3 translate{};    // mesh, points
 };
 
 enum class ModelVariant { lps, paper };
@@ -49,8 +49,8 @@ struct Body {
 
 struct Constraint {
   Region region;
-  bool fix = false;   // velocity zero
-  Vec3 velocity{};    // prescribed velocity when not fixed
+  bool fix = false;  // velocity zero
+  Vec3 velocity{};   // prescribed velocity when not fixed
   double release_at = std::numeric_limits<double>::infinity();
 };
 
@@ -62,8 +62,8 @@ struct Probe {
 struct TimeSettings {
   double end = 0;
   bool dt_auto = true;
-  double dt = 0;         // used when !dt_auto
-  double safety = 0.9;   // factor on the stable estimate when dt is auto
+  double dt = 0;        // used when !dt_auto
+  double safety = 0.9;  // factor on the stable estimate when dt is auto
 };
 
 struct IntegratorSettings {

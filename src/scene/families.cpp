@@ -1,8 +1,7 @@
-#include <nanoflann.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <nanoflann.hpp>
 #include <numeric>
 
 #include "scene/particles.hpp"

@@ -16,9 +16,9 @@ struct Particles {
 
 // Family H_i of every particle (paper §3), as directed bonds: each pair appears in both rows.
 struct Families {
-  std::vector<int> offsets;             // count + 1
-  std::vector<int> neighbors;           // j for each bond, rows sorted by j
-  std::vector<double> reference_length; // |ξ| = |x_j - x_i|
+  std::vector<int> offsets;              // count + 1
+  std::vector<int> neighbors;            // j for each bond, rows sorted by j
+  std::vector<double> reference_length;  // |ξ| = |x_j - x_i|
   std::size_t directed_bonds() const { return neighbors.size(); }
 };
 

@@ -32,7 +32,8 @@ PointSet read_points_file(const std::string& path) {
         used = 0;
       }
       if (used != token.size())
-        throw InputError(path, "", fmt::format("line {}: '{}' is not a number", line_number, token));
+        throw InputError(path, "",
+                         fmt::format("line {}: '{}' is not a number", line_number, token));
       if (!std::isfinite(v))
         throw InputError(path, "", fmt::format("line {}: non-finite value", line_number));
       values.push_back(v);
@@ -40,18 +41,21 @@ PointSet read_points_file(const std::string& path) {
     if (values.empty()) continue;
     const int columns = static_cast<int>(values.size());
     if (columns != 4 && columns != 7)
-      throw InputError(path, "", fmt::format("line {}: expected 4 (x y z volume) or 7 "
-                                             "(x y z volume vx vy vz) columns, got {}",
-                                             line_number, columns));
+      throw InputError(path, "",
+                       fmt::format("line {}: expected 4 (x y z volume) or 7 "
+                                   "(x y z volume vx vy vz) columns, got {}",
+                                   line_number, columns));
     if (columns_seen != 0 && columns != columns_seen)
-      throw InputError(path, "", fmt::format("line {}: {} columns where earlier lines have {}",
-                                             line_number, columns, columns_seen));
+      throw InputError(path, "",
+                       fmt::format("line {}: {} columns where earlier lines have {}", line_number,
+                                   columns, columns_seen));
     columns_seen = columns;
     if (values[3] <= 0)
       throw InputError(path, "", fmt::format("line {}: volume must be positive", line_number));
     points.position.insert(points.position.end(), values.begin(), values.begin() + 3);
     points.volume.push_back(values[3]);
-    if (columns == 7) points.velocity.insert(points.velocity.end(), values.begin() + 4, values.end());
+    if (columns == 7)
+      points.velocity.insert(points.velocity.end(), values.begin() + 4, values.end());
   }
   if (points.volume.empty()) throw InputError(path, "", "the points file holds no particles");
   return points;

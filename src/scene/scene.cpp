@@ -49,10 +49,10 @@ void add_tet_particles(const TetMesh& mesh, int body_index, const Body& body, Pa
       b[k] = v[2][k] - v[0][k];
       d[k] = v[3][k] - v[0][k];
     }
-    const double volume = std::abs(a[0] * (b[1] * d[2] - b[2] * d[1]) -
-                                   a[1] * (b[0] * d[2] - b[2] * d[0]) +
-                                   a[2] * (b[0] * d[1] - b[1] * d[0])) /
-                          6.0;
+    const double volume =
+        std::abs(a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                 a[2] * (b[0] * d[1] - b[1] * d[0])) /
+        6.0;
     if (!(volume > 0)) continue;
     for (int k = 0; k < 3; ++k) {
       p.reference.push_back(0.25 * (v[0][k] + v[1][k] + v[2][k] + v[3][k]));

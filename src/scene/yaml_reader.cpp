@@ -134,7 +134,8 @@ static void set_path(YAML::Node node, const std::vector<std::string>& parts, std
   if (is_index(part) && node.IsSequence()) {
     const std::size_t index = std::stoul(part);
     if (index >= node.size())
-      throw InputError(file, key, fmt::format("index {} out of range (size {})", index, node.size()));
+      throw InputError(file, key,
+                       fmt::format("index {} out of range (size {})", index, node.size()));
     if (last)
       node[index] = value;
     else

@@ -9,10 +9,9 @@ namespace {
 
 std::string scene(const std::string& geometry, const std::string& material_extra = "",
                   const std::string& body_extra = "") {
-  return "time: {end: 0.001}\nbodies:\n  - geometry: " + geometry +
-         "\n    resolution: 0.02\n" + body_extra +
-         "    material: {density: 1000, bulk_modulus: 1.0e6, shear_modulus: 1.0e6" + material_extra +
-         "}\n";
+  return "time: {end: 0.001}\nbodies:\n  - geometry: " + geometry + "\n    resolution: 0.02\n" +
+         body_extra + "    material: {density: 1000, bulk_modulus: 1.0e6, shear_modulus: 1.0e6" +
+         material_extra + "}\n";
 }
 
 const std::string kBox = "{box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}";
@@ -43,29 +42,30 @@ TEST_P(BadInput, ClearMessageAndExitCodeTwo) {
 
 INSTANTIATE_TEST_SUITE_P(
     Classes, BadInput,
-    ::testing::Values(
-        BadCase{"unknown_key", scene(kBox, ", densty: 3"), "",
-                "bodies[0].material.densty: unknown key; did you mean 'density'?"},
-        BadCase{"wrong_type", scene(kBox), "--set bodies[0].horizon=wide",
-                "bodies[0].horizon: expected a number, got 'wide'"},
-        BadCase{"missing_mesh", scene("{mesh: {file: nowhere.obj}}"), "",
-                "nowhere.obj: bodies[0].geometry:"},
-        BadCase{"malformed_mesh", scene("{mesh: {file: broken.obj}}"), "",
-                "broken.obj: bodies[0].geometry:"},
-        BadCase{"density", scene(kBox), "--set bodies[0].material.density=-1",
-                "bodies[0].material.density: must be positive"},
-        BadCase{"bulk_modulus", scene(kBox), "--set bodies[0].material.bulk_modulus=0",
-                "bodies[0].material.bulk_modulus: must be positive"},
-        BadCase{"shear_modulus", scene(kBox), "--set bodies[0].material.shear_modulus=-5",
-                "bodies[0].material.shear_modulus: must be positive"},
-        BadCase{"resolution", scene(kBox), "--set bodies[0].resolution=0",
-                "bodies[0].resolution: must be positive"},
-        BadCase{"horizon", scene(kBox), "--set bodies[0].horizon=0",
-                "bodies[0].horizon: must be positive"},
-        BadCase{"no_particles", scene("{points: {file: empty.txt}}"), "",
-                "empty.txt: bodies[0].geometry: the points file holds no particles"},
-        BadCase{"integrator", scene(kBox), "--set integrator.type=verlet",
-                "integrator.type: unknown integrator 'verlet'"}),
+    ::testing::Values(BadCase{"unknown_key", scene(kBox, ", densty: 3"), "",
+                              "bodies[0].material.densty: unknown key; did you mean 'density'?"},
+                      BadCase{"wrong_type", scene(kBox), "--set bodies[0].horizon=wide",
+                              "bodies[0].horizon: expected a number, got 'wide'"},
+                      BadCase{"missing_mesh", scene("{mesh: {file: nowhere.obj}}"), "",
+                              "nowhere.obj: bodies[0].geometry:"},
+                      BadCase{"malformed_mesh", scene("{mesh: {file: broken.obj}}"), "",
+                              "broken.obj: bodies[0].geometry:"},
+                      BadCase{"density", scene(kBox), "--set bodies[0].material.density=-1",
+                              "bodies[0].material.density: must be positive"},
+                      BadCase{"bulk_modulus", scene(kBox),
+                              "--set bodies[0].material.bulk_modulus=0",
+                              "bodies[0].material.bulk_modulus: must be positive"},
+                      BadCase{"shear_modulus", scene(kBox),
+                              "--set bodies[0].material.shear_modulus=-5",
+                              "bodies[0].material.shear_modulus: must be positive"},
+                      BadCase{"resolution", scene(kBox), "--set bodies[0].resolution=0",
+                              "bodies[0].resolution: must be positive"},
+                      BadCase{"horizon", scene(kBox), "--set bodies[0].horizon=0",
+                              "bodies[0].horizon: must be positive"},
+                      BadCase{"no_particles", scene("{points: {file: empty.txt}}"), "",
+                              "empty.txt: bodies[0].geometry: the points file holds no particles"},
+                      BadCase{"integrator", scene(kBox), "--set integrator.type=verlet",
+                              "integrator.type: unknown integrator 'verlet'"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(BadInput, MissingConfigFile) {
@@ -81,17 +81,20 @@ TEST(BadInput, MissingConfigFile) {
 TEST(BadInput, NonFiniteStateStopsWithStepTimeAndParticle) {
   const auto dir = test::scratch_dir("nonfinite");
   const auto config = dir / "scene.yaml";
-  test::write_file(config, scene(kBox) + "gravity: [0, 0, -9.81]\n" +
-                               "constraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.02, 1, 1]}}, "
-                               "fix: true}\n" + "probes:\n  - {name: all, region: {box: {min: [-1, -1, -1], "
-                                         "max: [1, 1, 1]}}}\n" +
-                               "output: {every: 1.0e-6, probe_every: 1.0e-6}\n");
+  test::write_file(config,
+                   scene(kBox) + "gravity: [0, 0, -9.81]\n" +
+                       "constraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.02, 1, 1]}}, "
+                       "fix: true}\n" +
+                       "probes:\n  - {name: all, region: {box: {min: [-1, -1, -1], "
+                       "max: [1, 1, 1]}}}\n" +
+                       "output: {every: 1.0e-6, probe_every: 1.0e-6}\n");
   const auto out = dir / "out";
   const auto outcome = test::run_fissure("run " + config.string() + " --out " + out.string() +
                                          " --set time.dt=1e-2 --set time.end=1.0");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("warning: "), std::string::npos) << outcome.output;
-  EXPECT_NE(outcome.output.find("state became non-finite at step"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("state became non-finite at step"), std::string::npos)
+      << outcome.output;
   EXPECT_NE(outcome.output.find("first at particle"), std::string::npos) << outcome.output;
   EXPECT_TRUE(std::filesystem::exists(out / "probes.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "particles.pvd"));

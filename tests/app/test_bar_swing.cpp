@@ -23,7 +23,8 @@ TEST(BarSwing, TipFallsThenRises) {
   std::string line;
   std::getline(csv, line);
   ASSERT_EQ(line.rfind("time,kinetic_energy,elastic_energy,tip.pos_x,tip.pos_y,tip.pos_z,"
-                       "tip.disp_x,tip.disp_y,tip.disp_z", 0),
+                       "tip.disp_x,tip.disp_y,tip.disp_z",
+                       0),
             0u)
       << line;
   std::vector<double> time, dz;

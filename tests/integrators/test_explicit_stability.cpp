@@ -16,8 +16,8 @@ double total_energy(Model& model, const Scene& scene, const State& s) {
   return kinetic_energy(scene.particles.mass, s.velocity) + model.elastic_energy(s.position.data());
 }
 
-// A free vibration of a 0.6 × 0.05 × 0.05 bar (first longitudinal mode, v_x ∝ cos πx/L) under velocity
-// Verlet at half the stable estimate keeps |ΔE|/E below 1e-3 over 10,000 steps. Verlet's
+// A free vibration of a 0.6 × 0.05 × 0.05 bar (first longitudinal mode, v_x ∝ cos πx/L) under
+// velocity Verlet at half the stable estimate keeps |ΔE|/E below 1e-3 over 10,000 steps. Verlet's
 // energy error is bounded and O((ω Δt)²) for the excited low modes, so 1e-3 has a wide margin.
 TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
   const std::string yaml =
@@ -28,7 +28,8 @@ TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "test");
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0), 0};
+  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0),
+              0};
   for (int i = 0; i < scene.particles.count(); ++i)
     state.velocity[3 * i] = 0.05 * std::cos(M_PI * scene.particles.reference[3 * i] / 0.6);
   const double dt = 0.5 * model->stable_time_step();
@@ -36,7 +37,8 @@ TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
   double worst = 0;
   for (int s = 1; s <= 10000; ++s) {
     integrator->step(dynamics, state, dt);
-    if (s % 500 == 0) worst = std::max(worst, std::abs(total_energy(*model, scene, state) - e0) / e0);
+    if (s % 500 == 0)
+      worst = std::max(worst, std::abs(total_energy(*model, scene, state) - e0) / e0);
   }
   std::printf("velocity Verlet, 10000 steps at 0.5x estimate: max |dE|/E = %.2e\n", worst);
   EXPECT_LT(worst, 1e-3);
@@ -51,7 +53,8 @@ bool goes_unstable(const std::string& type, double factor) {
   auto integrator = make_integrator(type, "test");
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1e-5, 1e-5);
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0), 0};
+  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0),
+              0};
   for (double& y : state.position) y += u(rng);
   const double e0 = total_energy(*model, scene, state);
   const double dt = factor * model->stable_time_step();

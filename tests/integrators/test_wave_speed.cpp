@@ -17,15 +17,18 @@ namespace {
 TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
   const double bulk = 5e6, shear = 5e6, density = 1000;
   const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [1.5, 0.05, 0.05]}}}}\n"
+      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [1.5, 0.05, "
+      "0.05]}}}}\n"
       "    resolution: 0.0125\n    material: {{density: {}, bulk_modulus: {}, shear_modulus: {}}}\n"
-      "constraints:\n  - {{region: {{box: {{min: [-1, -1, -1], max: [0.03, 1, 1]}}}}, velocity: [0.01, 0, 0]}}\n",
+      "constraints:\n  - {{region: {{box: {{min: [-1, -1, -1], max: [0.03, 1, 1]}}}}, velocity: "
+      "[0.01, 0, 0]}}\n",
       density, bulk, shear);
   const Scene scene = build_scene(parse_config(yaml, "bar.yaml"));
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "test");
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0), 0};
+  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0),
+              0};
   dynamics.constrain_velocity(0, state.velocity.data());
 
   const double E = 9 * bulk * shear / (3 * bulk + shear);
@@ -69,7 +72,8 @@ TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
                 probes[p], slope, arrival[p]);
   }
   const double measured = (probes[1] - probes[0]) / (arrival[1] - arrival[0]);
-  std::printf("wave speed %.2f m/s, sqrt(E/rho) = %.2f m/s, ratio %.4f\n", measured, c, measured / c);
+  std::printf("wave speed %.2f m/s, sqrt(E/rho) = %.2f m/s, ratio %.4f\n", measured, c,
+              measured / c);
   EXPECT_NEAR(measured / c, 1.0, 0.05);
 }
 

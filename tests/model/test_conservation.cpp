@@ -22,7 +22,8 @@ std::vector<double> perturbed(const Particles& p, double amplitude, unsigned see
 
 double max_norm(const std::vector<double>& f) {
   double m = 0;
-  for (std::size_t i = 0; i < f.size(); i += 3) m = std::max(m, std::hypot(f[i], f[i + 1], f[i + 2]));
+  for (std::size_t i = 0; i < f.size(); i += 3)
+    m = std::max(m, std::hypot(f[i], f[i + 1], f[i + 2]));
   return m;
 }
 
@@ -103,7 +104,8 @@ TEST(Conservation, MomentumOverThousandFreeSteps) {
     Dynamics dynamics(scene, *model);
     auto integrator = make_integrator(type, "test");
     State state{perturbed(scene.particles, 2e-4, 3), perturbed(scene.particles, 0.05, 4), 0.0};
-    for (std::size_t k = 0; k < state.velocity.size(); ++k) state.velocity[k] -= scene.particles.reference[k];
+    for (std::size_t k = 0; k < state.velocity.size(); ++k)
+      state.velocity[k] -= scene.particles.reference[k];
     auto momenta = [&](double* p, double* l, double& scale) {
       p[0] = p[1] = p[2] = l[0] = l[1] = l[2] = scale = 0;
       for (int i = 0; i < scene.particles.count(); ++i) {

@@ -60,9 +60,9 @@ TEST(Config, WrongTypeNamesKey) {
 }
 
 TEST(Config, NonPositiveValuesAreRejected) {
-  for (const char* key : {"bodies[0].material.density", "bodies[0].material.bulk_modulus",
-                          "bodies[0].material.shear_modulus", "bodies[0].resolution",
-                          "bodies[0].horizon"}) {
+  for (const char* key :
+       {"bodies[0].material.density", "bodies[0].material.bulk_modulus",
+        "bodies[0].material.shear_modulus", "bodies[0].resolution", "bodies[0].horizon"}) {
     const std::string e = error_of(kMinimal, {std::string(key) + "=0"});
     EXPECT_NE(e.find(std::string(key) + ": must be positive"), std::string::npos) << e;
   }
@@ -74,8 +74,8 @@ TEST(Config, MalformedYamlGivesLine) {
 }
 
 TEST(Config, ConstraintNeedsFixOrVelocity) {
-  const std::string e = error_of(std::string(kMinimal) +
-                                 "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}}\n");
+  const std::string e = error_of(
+      std::string(kMinimal) + "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}}\n");
   EXPECT_NE(e.find("constraints[0]: give either fix: true or velocity"), std::string::npos) << e;
 }
 

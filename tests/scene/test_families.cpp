@@ -54,8 +54,7 @@ TEST(Families, TetSamplingConservesVolumeAndMass) {
   // Interior particles have about 110 family members at δ = 1.45 λ (Table 1's ratio).
   const auto members = test::interior(scene.particles, 0.1, 1.45 * 0.02);
   double mean = 0;
-  for (int i : members)
-    mean += scene.families.offsets[i + 1] - scene.families.offsets[i];
+  for (int i : members) mean += scene.families.offsets[i + 1] - scene.families.offsets[i];
   mean /= members.size();
   std::printf("interior family size: %.1f\n", mean);
   EXPECT_GT(mean, 60);
