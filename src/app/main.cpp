@@ -55,5 +55,8 @@ int main(int argc, char** argv) {
   } catch (const fissure::RunError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 3;
+  } catch (const std::exception& e) {  // e.g. an output folder that cannot be created
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 3;
   }
 }

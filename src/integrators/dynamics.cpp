@@ -6,12 +6,17 @@ Dynamics::Dynamics(const Scene& scene, Model& model)
     : model_(model), mass_(scene.particles.mass), damping_(scene.config.damping) {
   for (int k = 0; k < 3; ++k) gravity_[k] = scene.config.gravity[k];
   const Particles& p = scene.particles;
-  for (const Constraint& c : scene.config.constraints) {
-    Held held{{}, {c.velocity[0], c.velocity[1], c.velocity[2]}, c.release_at};
-    for (int i = 0; i < p.count(); ++i)
-      if (c.region.contains(&p.reference[3 * i])) held.particles.push_back(i);
-    held_.push_back(std::move(held));
-  }
+  const auto& constraints = scene.config.constraints;
+  for (const Constraint& c : constraints)
+    held_.push_back({{}, {c.velocity[0], c.velocity[1], c.velocity[2]}, c.release_at});
+  // Each particle belongs to the last constraint whose region holds it: later constraints
+  // override earlier ones, also after their release.
+  for (int i = 0; i < p.count(); ++i)
+    for (int c = static_cast<int>(constraints.size()) - 1; c >= 0; --c)
+      if (constraints[c].region.contains(&p.reference[3 * i])) {
+        held_[c].particles.push_back(i);
+        break;
+      }
   force_.resize(3 * mass_.size());
 }
 
