@@ -30,7 +30,7 @@ void print_info(const Config& config) {
   else
     fmt::print("dt: {:.4g} s{}\n", config.time.dt,
                config.time.dt > stable_dt ? " (above the stable estimate)" : "");
-  fmt::print("effects: elasticity\n");
+  fmt::print("effects: elasticity{}\n", config.fracture_enabled() ? ", fracture" : "");
 }
 
 }  // namespace fissure

@@ -10,6 +10,7 @@
 
 #include "app/energy.hpp"
 #include "core/error.hpp"
+#include "fracture/bond_breaking.hpp"
 #include "integrators/integrator.hpp"
 #include "io/atomic_file.hpp"
 #include "io/probes_csv.hpp"
@@ -46,9 +47,9 @@ void write_summary(const std::string& path, const RunSummary& s) {
         "  \"dt\": {:.9g},\n  \"stable_dt\": {:.9g},\n  \"wall_seconds\": {:.6g},\n"
         "  \"seconds_per_step\": {:.6g},\n  \"setup_seconds\": {:.6g},\n  \"peak_rss_mb\": "
         "{:.6g},\n"
-        "  \"energy_drift\": {:.6g}\n}}\n",
+        "  \"energy_drift\": {:.6g},\n  \"broken_bonds\": {}\n}}\n",
         s.status, s.particles, s.bonds, s.steps, s.dt, s.stable_dt, s.wall_seconds,
-        s.seconds_per_step, s.setup_seconds, s.peak_rss_mb, s.energy_drift);
+        s.seconds_per_step, s.setup_seconds, s.peak_rss_mb, s.energy_drift, s.broken_bonds);
   });
 }
 
@@ -69,6 +70,7 @@ class Simulation {
   Scene scene_;
   std::unique_ptr<Model> model_;
   std::unique_ptr<Dynamics> dynamics_;
+  std::unique_ptr<BondBreaking> bond_breaking_;  // only when the scene asks for fracture
   std::unique_ptr<ProbesCsv> probes_;
   std::unique_ptr<PvdIndex> pvd_;
   State state_;
@@ -85,6 +87,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   scene_ = build_scene(config);
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
+  if (config.fracture_enabled()) bond_breaking_ = std::make_unique<BondBreaking>(scene_, *model_);
   summary_.particles = scene_.particles.count();
   summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
   summary_.stable_dt = model_->stable_time_step();
@@ -162,6 +165,8 @@ RunSummary Simulation::run() {
   for (long s = 0; s < steps; ++s) {
     const auto step_start = Clock::now();
     integrator_->step(*dynamics_, state_, dt);
+    if (bond_breaking_ && bond_breaking_->run(state_.position.data()) > 0)
+      integrator_->bonds_changed();
     constraint_work_ += dt * dynamics_->constraint_power();
     if (config_.damping > 0)
       damping_loss_ +=
@@ -171,6 +176,7 @@ RunSummary Simulation::run() {
       summary_.status = "nonfinite";
       summary_.wall_seconds = seconds_since(setup_start_);
       summary_.peak_rss_mb = peak_rss_mb();
+      if (bond_breaking_) summary_.broken_bonds = static_cast<long>(bond_breaking_->broken_bonds());
       write_summary(config_.output.dir + "/summary.json", summary_);
       throw RunError(fmt::format(
           "state became non-finite at step {} (t = {:.6g} s), first at particle {}; dt = {:.3g} s, "
@@ -190,6 +196,7 @@ RunSummary Simulation::run() {
   summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
   summary_.wall_seconds = seconds_since(setup_start_);
   summary_.peak_rss_mb = peak_rss_mb();
+  if (bond_breaking_) summary_.broken_bonds = static_cast<long>(bond_breaking_->broken_bonds());
   write_summary(config_.output.dir + "/summary.json", summary_);
   return summary_;
 }

@@ -21,6 +21,7 @@ struct RunSummary {
   double setup_seconds = 0;
   double peak_rss_mb = 0;
   double energy_drift = 0;
+  long broken_bonds = 0;  // each pair counted once, initial cracks included
   std::string status = "completed";
 };
 

@@ -47,11 +47,8 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int j = nbr[b];
-      const int reverse = static_cast<int>(
-          std::lower_bound(nbr.begin() + off[j], nbr.begin() + off[j + 1], i) - nbr.begin());
       bond_weight_[b] = static_cast<float>(c[b]);
-      bond_reverse_weight_[b] = static_cast<float>(c[reverse]);
+      bond_reverse_weight_[b] = static_cast<float>(c[families.reverse[b]]);
     }
 }
 
@@ -159,6 +156,12 @@ double LpsModel::stable_time_step() const {
     c[k] = std::abs(bond_weight_[k]);  // |c_ij| keeps the Cauchy–Schwarz bound valid
   }
   return gershgorin_time_step(particles_, families_, materials_, {b, omega, unit, c});
+}
+
+void LpsModel::break_bond(std::size_t b) {
+  bond_omega_[b] = 0;
+  bond_weight_[b] = 0;
+  bond_reverse_weight_[b] = 0;
 }
 
 std::size_t LpsModel::bytes_per_bond() const {

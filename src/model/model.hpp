@@ -37,6 +37,9 @@ class Model {
   const std::vector<double>& dilatation() const { return dilatation_; }
   // Gershgorin bound on the stable explicit step at the reference state (notes §4).
   virtual double stable_time_step() const = 0;
+  // Removes bond b of its row for good (fracture): it carries no force and stores no energy.
+  // The same bond in the other row (Families::reverse) is removed by its own call.
+  virtual void break_bond(std::size_t b) = 0;
   // Bytes of per-bond data the force kernel streams.
   virtual std::size_t bytes_per_bond() const = 0;
 

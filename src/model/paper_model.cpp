@@ -123,6 +123,8 @@ double PaperModel::stable_time_step() const {
   return gershgorin_time_step(particles_, families_, materials_, {b, omega_, c_scale, omega_});
 }
 
+void PaperModel::break_bond(std::size_t b) { omega_[b] = 0; }
+
 std::size_t PaperModel::bytes_per_bond() const {
   return sizeof(int) + 2 * sizeof(double);  // neighbour, |ξ|, ω
 }

@@ -16,6 +16,7 @@ class PaperModel final : public Model {
   void energy_density(const double* y, double* w) override;
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
+  void break_bond(std::size_t b) override;
 
  private:
   std::vector<double> omega_;  // ω_ij = δ/|ξ| (Eq 5)

@@ -11,6 +11,12 @@
 
 namespace fissure {
 
+bool Config::fracture_enabled() const {
+  for (const Body& b : bodies)
+    if (b.material.fracture.enabled) return true;
+  return !initial_cracks.empty();
+}
+
 bool Region::contains(const double* p) const {
   if (kind == Kind::box)
     return p[0] >= min[0] && p[0] <= max[0] && p[1] >= min[1] && p[1] <= max[1] && p[2] >= min[2] &&
@@ -96,9 +102,44 @@ Geometry read_geometry(const YamlReader& r, const YAML::Node& node, const std::s
   return g;
 }
 
+FractureSettings read_fracture(const YamlReader& r, const YAML::Node& node,
+                               const std::string& path) {
+  r.check_keys(node, path, {"critical_stretch", "alpha"});
+  FractureSettings f;
+  f.enabled = true;
+  f.critical_stretch = r.positive(node["critical_stretch"], join(path, "critical_stretch"));
+  if (node["alpha"]) f.alpha = r.non_negative(node["alpha"], join(path, "alpha"));
+  return f;
+}
+
+Crack read_crack(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  r.check_keys(node, path, {"plane", "box"});
+  if (node.size() != 1) r.fail(path, "give exactly one of plane, box");
+  Crack crack;
+  if (const auto plane = node["plane"]) {
+    const std::string p = join(path, "plane");
+    r.check_keys(plane, p, {"point", "normal", "region"});
+    crack.kind = Crack::Kind::plane;
+    crack.point = r.vec3(plane["point"], join(p, "point"));
+    crack.normal = r.vec3(plane["normal"], join(p, "normal"));
+    if (crack.normal == Vec3{0, 0, 0}) r.fail(join(p, "normal"), "must not be zero");
+    if (plane["region"]) {
+      crack.bounded = true;
+      crack.region = read_region(r, plane["region"], join(p, "region"));
+    }
+  } else {
+    crack.kind = Crack::Kind::box;
+    YAML::Node wrapped;
+    wrapped["box"] = node["box"];
+    crack.region = read_region(r, wrapped, path);
+  }
+  return crack;
+}
+
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
-  r.check_keys(node, path,
-               {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction"});
+  r.check_keys(
+      node, path,
+      {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction", "fracture"});
   Material m;
   if (node["model"]) {
     const std::string model = r.string(node["model"], join(path, "model"));
@@ -114,6 +155,7 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
   m.shear_modulus = r.positive(node["shear_modulus"], join(path, "shear_modulus"));
   if (node["surface_correction"])
     m.surface_correction = r.boolean(node["surface_correction"], join(path, "surface_correction"));
+  if (node["fracture"]) m.fracture = read_fracture(r, node["fracture"], join(path, "fracture"));
   return m;
 }
 
@@ -161,8 +203,8 @@ TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
 
 Config read_config(const YamlReader& r, const YAML::Node& root) {
   r.check_keys(root, "",
-               {"name", "time", "integrator", "gravity", "bodies", "constraints", "damping",
-                "probes", "output"});
+               {"name", "time", "integrator", "gravity", "bodies", "constraints", "initial_cracks",
+                "damping", "probes", "output"});
   Config c;
   c.file = r.file();
   c.name = root["name"] ? r.string(root["name"], "name")
@@ -189,6 +231,11 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     if (!n.IsSequence()) r.fail("constraints", "expected a list");
     for (std::size_t i = 0; i < n.size(); ++i)
       c.constraints.push_back(read_constraint(r, n[i], indexed("constraints", i)));
+  }
+  if (const auto n = root["initial_cracks"]) {
+    if (!n.IsSequence()) r.fail("initial_cracks", "expected a list");
+    for (std::size_t i = 0; i < n.size(); ++i)
+      c.initial_cracks.push_back(read_crack(r, n[i], indexed("initial_cracks", i)));
   }
   if (root["damping"]) c.damping = r.non_negative(root["damping"], "damping");
   if (const auto n = root["probes"]) {

@@ -30,12 +30,20 @@ struct Geometry {
 
 enum class ModelVariant { lps, paper };
 
+// Bond breaking (paper §5.1, Eqs 18–19); absent means the body never breaks.
+struct FractureSettings {
+  bool enabled = false;
+  double critical_stretch = 0;  // s_c, Table 1's s^ω column
+  double alpha = 0;             // α: the criterion grows as (1 + α φ) with damage φ
+};
+
 struct Material {
   ModelVariant model = ModelVariant::lps;
   double density = 0;
   double bulk_modulus = 0;
   double shear_modulus = 0;
   bool surface_correction = true;  // lps only: calibrated dilatation weights (docs/model.md)
+  FractureSettings fracture;
 };
 
 struct Body {
@@ -52,6 +60,14 @@ struct Constraint {
   bool fix = false;  // velocity zero
   Vec3 velocity{};   // prescribed velocity when not fixed
   double release_at = std::numeric_limits<double>::infinity();
+};
+
+// A pre-crack: removes every bond that crosses it before the run starts.
+struct Crack {
+  enum class Kind { plane, box } kind = Kind::plane;
+  Vec3 point{}, normal{};  // plane
+  bool bounded = false;    // plane: only where the crossing point lies in `region`
+  Region region;           // plane bound, or the box itself
 };
 
 struct Probe {
@@ -84,9 +100,12 @@ struct Config {
   Vec3 gravity{};
   std::vector<Body> bodies;
   std::vector<Constraint> constraints;
+  std::vector<Crack> initial_cracks;
   double damping = 0;  // mass-proportional damping coefficient [1/s]
   std::vector<Probe> probes;
   OutputSettings output;
+
+  bool fracture_enabled() const;
 };
 
 // Loads and validates a scene. `overrides` are "key.path=value" strings (CLI --set) applied to

@@ -79,6 +79,15 @@ Families build_families(const Particles& particles, const std::vector<double>& h
       ++k;
     }
   }
+  f.reverse.resize(f.offsets[n]);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+      const int j = f.neighbors[b];
+      const auto row = f.neighbors.begin();
+      f.reverse[b] =
+          static_cast<int>(std::lower_bound(row + f.offsets[j], row + f.offsets[j + 1], i) - row);
+    }
   return f;
 }
 

@@ -19,6 +19,7 @@ struct Families {
   std::vector<int> offsets;              // count + 1
   std::vector<int> neighbors;            // j for each bond, rows sorted by j
   std::vector<double> reference_length;  // |ξ| = |x_j - x_i|
+  std::vector<int> reverse;              // index of the same bond in row j (j → i)
   std::size_t directed_bonds() const { return neighbors.size(); }
 };
 

@@ -1,0 +1,100 @@
+#include "fracture/bond_breaking.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "fracture/initial_cracks.hpp"
+
+namespace fissure {
+
+BondBreaking::BondBreaking(const Scene& scene, Model& model)
+    : families_(scene.families), model_(model) {
+  const Particles& p = scene.particles;
+  const int n = p.count();
+  critical_stretch_.resize(n);
+  alpha_.resize(n);
+  horizon_.resize(n);
+  intact_.resize(n);
+  damage_.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const FractureSettings& f = scene.config.bodies[p.body[i]].material.fracture;
+    critical_stretch_[i] = f.enabled ? f.critical_stretch : std::numeric_limits<double>::infinity();
+    alpha_[i] = f.alpha;
+    horizon_[i] = scene.horizon_of_body[p.body[i]];
+    intact_[i] = families_.offsets[i + 1] - families_.offsets[i];
+  }
+  broken_.assign(families_.directed_bonds(), 0);
+  exceeded_.assign(families_.directed_bonds(), 0);
+  std::size_t removed = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
+      const double* xi = &p.reference[3 * i];
+      const double* xj = &p.reference[3 * families_.neighbors[b]];
+      for (const Crack& crack : scene.config.initial_cracks)
+        if (crosses(crack, xi, xj)) {
+          remove(i, b);
+          ++removed;
+          break;
+        }
+    }
+    update_damage(i);
+  }
+  broken_pairs_ = removed / 2;
+}
+
+void BondBreaking::remove(int i, int b) {
+  broken_[b] = 1;
+  model_.break_bond(b);
+  --intact_[i];
+}
+
+void BondBreaking::update_damage(int i) {
+  const int total = families_.offsets[i + 1] - families_.offsets[i];
+  damage_[i] = total > 0 ? 1.0 - static_cast<double>(intact_[i]) / total : 0.0;
+}
+
+std::size_t BondBreaking::run(const double* y) {
+  const int n = static_cast<int>(intact_.size());
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& xi = families_.reference_length;
+  std::size_t exceeded = 0;
+  // s^ω_ij = (1 + αφ_i) e_ij / δ (Eq 19 with Eq 5's ω = δ/|ξ| and s^e = e/|ξ|, Eq 18), in
+  // tension only: a compressed bond never breaks.
+#pragma omp parallel for reduction(+ : exceeded) schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double threshold = critical_stretch_[i] * horizon_[i] / (1.0 + alpha_[i] * damage_[i]);
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      if (broken_[b]) continue;
+      const double* yi = y + 3 * i;
+      const double* yj = y + 3 * nbr[b];
+      const double e =
+          std::sqrt((yj[0] - yi[0]) * (yj[0] - yi[0]) + (yj[1] - yi[1]) * (yj[1] - yi[1]) +
+                    (yj[2] - yi[2]) * (yj[2] - yi[2])) -
+          xi[b];
+      exceeded_[b] = e > threshold;
+      exceeded += exceeded_[b];
+    }
+  }
+  if (exceeded == 0) return 0;
+  // A bond breaks in both rows when either row's criterion is exceeded; each row updates only
+  // its own entries, so the rows can run in parallel.
+  std::size_t removed = 0;
+#pragma omp parallel for reduction(+ : removed) schedule(static)
+  for (int i = 0; i < n; ++i) {
+    bool changed = false;
+    for (int b = off[i]; b < off[i + 1]; ++b)
+      if (!broken_[b] && (exceeded_[b] || exceeded_[families_.reverse[b]])) {
+        remove(i, b);
+        ++removed;
+        changed = true;
+      }
+    if (changed) update_damage(i);
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < exceeded_.size(); ++b) exceeded_[b] = 0;
+  broken_pairs_ += removed / 2;
+  return removed / 2;
+}
+
+}  // namespace fissure

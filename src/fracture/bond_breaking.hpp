@@ -1,0 +1,44 @@
+#pragma once
+// The fracture post-step shared by every integrator (paper §5.1): after a completed step, bonds
+// whose stretch criterion (Eq 19) exceeds the critical stretch break for good, and each particle's
+// damage φ_i = 1 − n_i/N_i follows. It never runs inside a force evaluation.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+#include "scene/scene.hpp"
+
+namespace fissure {
+
+class BondBreaking {
+ public:
+  // Removes the bonds that cross the scene's initial cracks.
+  BondBreaking(const Scene& scene, Model& model);
+  // Breaks every intact bond whose criterion exceeds s_c in either of its rows; returns how many
+  // bonds (pairs) broke, so an integrator can be told that the bond set changed.
+  std::size_t run(const double* y);
+  // φ_i = 1 − n_i/N_i (Eq 19), N_i counted before the initial cracks.
+  const std::vector<double>& damage() const { return damage_; }
+  // 1 for each broken directed bond (CSR order).
+  const std::vector<std::uint8_t>& broken() const { return broken_; }
+  // Broken bonds, each pair counted once.
+  std::size_t broken_bonds() const { return broken_pairs_; }
+
+ private:
+  void remove(int i, int b);
+  void update_damage(int i);
+
+  const Families& families_;
+  Model& model_;
+  std::vector<double> critical_stretch_;  // s_c per particle (infinite: never breaks)
+  std::vector<double> alpha_;             // α per particle
+  std::vector<double> horizon_;           // δ per particle
+  std::vector<std::uint8_t> broken_;      // per directed bond
+  std::vector<std::uint8_t> exceeded_;    // per directed bond, this step
+  std::vector<int> intact_;               // n_i
+  std::vector<double> damage_;            // φ_i
+  std::size_t broken_pairs_ = 0;
+};
+
+}  // namespace fissure

@@ -1,0 +1,153 @@
+// Bond breaking (paper §5.1, Eqs 18–19) and initial cracks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "fracture/bond_breaking.hpp"
+#include "integrators/integrator.hpp"
+#include "model/model.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+Scene bar_scene(double critical_stretch, const std::string& extra = "") {
+  const std::string yaml = fmt::format(
+      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.4, 0.08, "
+      "0.08]}}}}\n"
+      "    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: 2.0e6, shear_modulus: "
+      "1.0e6, fracture: {{critical_stretch: {}}}}}\n{}",
+      critical_stretch, extra);
+  return build_scene(parse_config(yaml, "bar.yaml"));
+}
+
+// Piece of each particle: particles connected through intact bonds share a root (union–find).
+std::vector<int> piece_of(const Scene& scene, const BondBreaking& breaking) {
+  const int n = scene.particles.count();
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (int i = 0; i < n; ++i)
+    for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b)
+      if (!breaking.broken()[b]) parent[find(i)] = find(scene.families.neighbors[b]);
+  for (int i = 0; i < n; ++i) parent[i] = find(i);
+  return parent;
+}
+
+int pieces(const Scene& scene, const BondBreaking& breaking) {
+  const auto root = piece_of(scene, breaking);
+  int count = 0;
+  for (std::size_t i = 0; i < root.size(); ++i) count += root[i] == static_cast<int>(i);
+  return count;
+}
+
+// Under a homogeneous stretch every bond's extension is known, so the criterion e/δ > s_c
+// (Eq 19 with α = 0) must split the bonds exactly: broken ones exceed it, intact ones do not.
+// Along x, e ≤ ε|ξ| ≤ εδ, so ε just below s_c breaks nothing.
+TEST(BondBreaking, HomogeneousStretchBreaksExactlyTheBondsPastTheCriterion) {
+  const double sc = 0.01;
+  for (const double factor : {0.99, 1.3}) {
+    const Scene scene = bar_scene(sc);
+    auto model = make_model(scene);
+    BondBreaking breaking(scene, *model);
+    const double eps = factor * sc;
+    const double F[9] = {1 + eps, 0, 0, 0, 1, 0, 0, 0, 1};
+    const auto y = test::deform(scene.particles, F);
+    const std::size_t broke = breaking.run(y.data());
+    const double delta = 1.45 * 0.02;
+    std::size_t past = 0;
+    for (int i = 0; i < scene.particles.count(); ++i)
+      for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b) {
+        const int j = scene.families.neighbors[b];
+        const double e = std::hypot(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1],
+                                    y[3 * j + 2] - y[3 * i + 2]) -
+                         scene.families.reference_length[b];
+        EXPECT_EQ(breaking.broken()[b] != 0, e > sc * delta) << "bond " << b;
+        past += e > sc * delta;
+      }
+    EXPECT_EQ(broke, past / 2);
+    if (factor < 1) {
+      EXPECT_EQ(broke, 0u);
+    } else {
+      EXPECT_GT(broke, 0u);
+    }
+    for (double phi : breaking.damage()) {
+      EXPECT_GE(phi, 0.0);
+      EXPECT_LE(phi, 1.0);
+    }
+  }
+}
+
+// A bar whose ends are pulled apart at 2 m/s each comes apart: the two gripped ends end in
+// different pieces. Bonds never heal (every broken flag stays set) and damage stays in [0, 1].
+TEST(BondBreaking, PulledBarComesApartAndBondsNeverHeal) {
+  const Scene scene = bar_scene(
+      0.02,
+      "constraints:\n"
+      "  - {region: {box: {min: [-1, -1, -1], max: [0.04, 1, 1]}}, velocity: [-2, 0, 0]}\n"
+      "  - {region: {box: {min: [0.36, -1, -1], max: [1, 1, 1]}}, velocity: [2, 0, 0]}\n");
+  auto model = make_model(scene);
+  Dynamics dynamics(scene, *model);
+  BondBreaking breaking(scene, *model);
+  auto integrator = make_integrator("velocity_verlet", "bar.yaml");
+  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0),
+              0};
+  dynamics.constrain_velocity(0, state.velocity.data());
+  const double dt = 0.9 * model->stable_time_step();
+  std::vector<std::uint8_t> was_broken = breaking.broken();
+  while (state.time < 0.01) {
+    integrator->step(dynamics, state, dt);
+    if (breaking.run(state.position.data()) > 0) integrator->bonds_changed();
+    for (std::size_t b = 0; b < was_broken.size(); ++b)
+      ASSERT_GE(breaking.broken()[b], was_broken[b]) << "bond " << b << " healed";
+    was_broken = breaking.broken();
+  }
+  for (double phi : breaking.damage()) {
+    ASSERT_GE(phi, 0.0);
+    ASSERT_LE(phi, 1.0);
+  }
+  // 4 cm of pull on a 0.4 m bar is a mean strain of 0.1, five times the critical stretch.
+  const auto root = piece_of(scene, breaking);
+  int left = -1, right = -1;
+  for (int i = 0; i < scene.particles.count(); ++i) {
+    if (scene.particles.reference[3 * i] < 0.02) left = root[i];
+    if (scene.particles.reference[3 * i] > 0.38) right = root[i];
+  }
+  EXPECT_NE(left, right);
+  EXPECT_GE(pieces(scene, breaking), 2);
+}
+
+// An unbounded plane through the bar removes every bond crossing it: two pieces before any step.
+// A plane bounded to the lower half of the section removes only part of them: still one piece.
+TEST(BondBreaking, InitialCracksRemoveCrossingBonds) {
+  const std::string plane =
+      "initial_cracks:\n  - {plane: {point: [0.2, 0, 0], normal: [1, 0, 0]}}\n";
+  const Scene cut = bar_scene(1.0, plane);
+  auto model = make_model(cut);
+  BondBreaking breaking(cut, *model);
+  EXPECT_EQ(pieces(cut, breaking), 2);
+  std::size_t crossing = 0;
+  for (int i = 0; i < cut.particles.count(); ++i)
+    for (int b = cut.families.offsets[i]; b < cut.families.offsets[i + 1]; ++b)
+      crossing += (cut.particles.reference[3 * i] - 0.2) *
+                      (cut.particles.reference[3 * cut.families.neighbors[b]] - 0.2) <
+                  0;
+  EXPECT_EQ(breaking.broken_bonds(), crossing / 2);
+
+  const Scene notch = bar_scene(
+      1.0,
+      "initial_cracks:\n  - {plane: {point: [0.2, 0, 0], normal: [1, 0, 0], region: {box: "
+      "{min: [0, -1, -1], max: [1, 1, 0.04]}}}}\n");
+  auto notch_model = make_model(notch);
+  BondBreaking notch_breaking(notch, *notch_model);
+  EXPECT_EQ(pieces(notch, notch_breaking), 1);
+  EXPECT_GT(notch_breaking.broken_bonds(), 0u);
+  EXPECT_LT(notch_breaking.broken_bonds(), crossing / 2);
+}
+
+}  // namespace
+}  // namespace fissure
