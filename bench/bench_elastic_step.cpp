@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
   fmt::print("directed_bonds {}\n", scene.families.directed_bonds());
   fmt::print("bonds_per_particle {:.1f}\n", bonds / scene.particles.count());
   fmt::print("bytes_per_bond {}\n", model->bytes_per_bond());
+  fmt::print("bytes_read_per_bond_per_step {}\n", model->bytes_read_per_bond());
   fmt::print("setup_seconds {:.2f}\n", setup);
   fmt::print("ns_per_bond_1thread {:.2f}\n", one / bonds * 1e9);
   fmt::print("ns_per_bond_2threads {:.2f}\n", two / bonds * 1e9);

@@ -19,8 +19,8 @@ void print_info(const Config& config) {
   fmt::print("particles: {}\n", n);
   fmt::print("bonds: {} (each pair once; {:.1f} family members per particle)\n", directed / 2,
              n > 0 ? static_cast<double>(directed) / n : 0.0);
-  fmt::print("bytes per bond: {} (per directed bond, streamed by the force kernel)\n",
-             model->bytes_per_bond());
+  fmt::print("bytes per bond: {} (stored per directed bond; a force evaluation reads {})\n",
+             model->bytes_per_bond(), model->bytes_read_per_bond());
   fmt::print("model: {}\n", model->name());
   fmt::print("integrator: {}\n", config.integrator.type);
   fmt::print("stable dt estimate: {:.4g} s\n", stable_dt);

@@ -20,11 +20,13 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "simulate a scene, writing output as it goes");
   run->add_option("config", config_path, "scene file (YAML)")->required();
   run->add_option("--out", out_dir, "output folder (overrides output.dir)");
-  run->add_option("--set", overrides, "override a config key: key.path=value (repeatable)");
+  run->add_option("--set", overrides, "override a config key: key.path=value (repeatable)")
+      ->allow_extra_args(false);
 
   auto* info = app.add_subcommand("info", "print particles, bonds, stable dt and effects");
   info->add_option("config", config_path, "scene file (YAML)")->required();
-  info->add_option("--set", overrides, "override a config key: key.path=value (repeatable)");
+  info->add_option("--set", overrides, "override a config key: key.path=value (repeatable)")
+      ->allow_extra_args(false);
 
   try {
     app.parse(argc, argv);

@@ -40,17 +40,30 @@ int first_nonfinite(const State& s) {
   return first == n ? -1 : first;
 }
 
+// A JSON number, or null where the value is not finite (JSON has no inf or nan).
+std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "null"; }
+
 void write_summary(const std::string& path, const RunSummary& s) {
   write_atomically(path, [&](std::ostream& out) {
     out << fmt::format(
         "{{\n  \"status\": \"{}\",\n  \"particles\": {},\n  \"bonds\": {},\n  \"steps\": {},\n"
-        "  \"dt\": {:.9g},\n  \"stable_dt\": {:.9g},\n  \"wall_seconds\": {:.6g},\n"
-        "  \"seconds_per_step\": {:.6g},\n  \"setup_seconds\": {:.6g},\n  \"peak_rss_mb\": "
-        "{:.6g},\n"
-        "  \"energy_drift\": {:.6g},\n  \"broken_bonds\": {}\n}}\n",
-        s.status, s.particles, s.bonds, s.steps, s.dt, s.stable_dt, s.wall_seconds,
-        s.seconds_per_step, s.setup_seconds, s.peak_rss_mb, s.energy_drift, s.broken_bonds);
+        "  \"dt\": {},\n  \"stable_dt\": {},\n  \"wall_seconds\": {},\n"
+        "  \"seconds_per_step\": {},\n  \"setup_seconds\": {},\n  \"peak_rss_mb\": {},\n"
+        "  \"energy_drift\": {},\n  \"broken_bonds\": {}\n}}\n",
+        s.status, s.particles, s.bonds, s.steps, json_number(s.dt), json_number(s.stable_dt),
+        json_number(s.wall_seconds), json_number(s.seconds_per_step), json_number(s.setup_seconds),
+        json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds);
   });
+}
+
+// Removes the files an earlier run left in `dir`, so frames of two runs never mix.
+void clear_previous_output(const std::string& dir) {
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    const bool frame = name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtu";
+    if (frame || name == "particles.pvd" || name == "probes.csv" || name == "summary.json")
+      std::filesystem::remove(entry.path());
+  }
 }
 
 class Simulation {
@@ -97,7 +110,15 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
                "warning: {}: time.dt = {:.3g} s exceeds the stable estimate {:.3g} s of the "
                "explicit step; the run may blow up\n",
                config.file, config.time.dt, summary_.stable_dt);
+  constexpr double max_steps = 1e9;
+  if (config.time.end / summary_.dt > max_steps)
+    throw InputError(
+        config.file, config.time.dt_auto ? "time.end" : "time.dt",
+        fmt::format("time.end / dt = {:.3g} steps (dt = {:.3g} s) is more than {:.0g}; "
+                    "check resolution, moduli and density",
+                    config.time.end / summary_.dt, summary_.dt, max_steps));
   std::filesystem::create_directories(config.output.dir);
+  clear_previous_output(config.output.dir);
   probes_ =
       std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles);
   pvd_ = std::make_unique<PvdIndex>(config.output.dir + "/particles.pvd");
@@ -145,8 +166,9 @@ void Simulation::report_progress(Clock::time_point start, bool final) {
 RunSummary Simulation::run() {
   const double dt = summary_.dt;
   const long steps = static_cast<long>(std::ceil(config_.time.end / dt - 1e-9));
+  const double end = config_.time.end;
   summary_.setup_seconds = seconds_since(setup_start_);
-  double next_frame = 0, next_probe = 0;
+  double next_frame = 0, next_probe = 0, last_frame_time = 0;
   const double tolerance = 1e-9 * dt;
   auto output_due = [&] {
     if (state_.time + tolerance >= next_probe) {
@@ -155,6 +177,7 @@ RunSummary Simulation::run() {
     }
     if (state_.time + tolerance >= next_frame) {
       write_frame();
+      last_frame_time = state_.time;
       next_frame += config_.output.every;
     }
   };
@@ -164,7 +187,9 @@ RunSummary Simulation::run() {
   double stepping_seconds = 0;
   for (long s = 0; s < steps; ++s) {
     const auto step_start = Clock::now();
-    integrator_->step(*dynamics_, state_, dt);
+    // The last step is shortened to land on time.end.
+    const double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
+    integrator_->step(*dynamics_, state_, h);
     if (bond_breaking_ && bond_breaking_->run(state_.position.data()) > 0)
       integrator_->bonds_changed();
     constraint_work_ += dt * dynamics_->constraint_power();
@@ -178,10 +203,13 @@ RunSummary Simulation::run() {
       summary_.peak_rss_mb = peak_rss_mb();
       if (bond_breaking_) summary_.broken_bonds = static_cast<long>(bond_breaking_->broken_bonds());
       write_summary(config_.output.dir + "/summary.json", summary_);
+      const double* x = &scene_.particles.reference[3 * bad];
       throw RunError(fmt::format(
-          "state became non-finite at step {} (t = {:.6g} s), first at particle {}; dt = {:.3g} s, "
-          "stable estimate {:.3g} s. Outputs up to this point are kept in {}",
-          summary_.steps, state_.time, bad, dt, summary_.stable_dt, config_.output.dir));
+          "state became non-finite at step {} (t = {:.6g} s), first at particle {} of body '{}' "
+          "(reference position {:.6g}, {:.6g}, {:.6g}); dt = {:.3g} s, stable estimate {:.3g} s. "
+          "Outputs up to this point are kept in {}",
+          summary_.steps, state_.time, bad, config_.bodies[scene_.particles.body[bad]].name, x[0],
+          x[1], x[2], dt, summary_.stable_dt, config_.output.dir));
     }
     stepping_seconds += seconds_since(step_start);
     output_due();
@@ -192,6 +220,7 @@ RunSummary Simulation::run() {
   }
   if (options_.progress) report_progress(start, true);
   if (last_sample_time_ < state_.time) sample_energy();
+  if (last_frame_time < state_.time) write_frame();
   summary_.energy_drift = energy_scale_ > 0 ? last_energy_ / energy_scale_ : 0.0;
   summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
   summary_.wall_seconds = seconds_since(setup_start_);

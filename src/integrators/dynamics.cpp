@@ -3,21 +3,29 @@
 namespace fissure {
 
 Dynamics::Dynamics(const Scene& scene, Model& model)
-    : model_(model), mass_(scene.particles.mass), damping_(scene.config.damping) {
+    : model_(model),
+      mass_(scene.particles.mass),
+      damping_(scene.config.damping),
+      constraints_(scene.config.constraints) {
   for (int k = 0; k < 3; ++k) gravity_[k] = scene.config.gravity[k];
   const Particles& p = scene.particles;
-  const auto& constraints = scene.config.constraints;
-  for (const Constraint& c : constraints)
-    held_.push_back({{}, {c.velocity[0], c.velocity[1], c.velocity[2]}, c.release_at});
-  // Each particle belongs to the last constraint whose region holds it: later constraints
-  // override earlier ones, also after their release.
-  for (int i = 0; i < p.count(); ++i)
-    for (int c = static_cast<int>(constraints.size()) - 1; c >= 0; --c)
-      if (constraints[c].region.contains(&p.reference[3 * i])) {
-        held_[c].particles.push_back(i);
-        break;
-      }
+  held_offsets_.push_back(0);
+  for (int i = 0; i < p.count(); ++i) {
+    const std::size_t before = held_by_.size();
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (constraints_[c].region.contains(&p.reference[3 * i]))
+        held_by_.push_back(static_cast<int>(c));
+    if (held_by_.size() == before) continue;
+    held_particles_.push_back(i);
+    held_offsets_.push_back(static_cast<int>(held_by_.size()));
+  }
   force_.resize(3 * mass_.size());
+}
+
+int Dynamics::active_constraint(std::size_t k, double t) const {
+  for (int c = held_offsets_[k + 1] - 1; c >= held_offsets_[k]; --c)
+    if (t < constraints_[held_by_[c]].release_at) return held_by_[c];
+  return -1;
 }
 
 void Dynamics::acceleration(double t, const double* y, const double* v, double* a) {
@@ -32,21 +40,22 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
   }
   // A held particle moves at constant velocity: its reaction is −m a_free, its power −m a_free·v.
   constraint_power_ = 0;
-  for (const Held& h : held_) {
-    if (t >= h.release_at) continue;
-    for (int i : h.particles)
-      for (int k = 0; k < 3; ++k) {
-        constraint_power_ -= mass_[i] * a[3 * i + k] * h.velocity[k];
-        a[3 * i + k] = 0;
-      }
+  for (std::size_t k = 0; k < held_particles_.size(); ++k) {
+    const int c = active_constraint(k, t);
+    if (c < 0) continue;
+    const int i = held_particles_[k];
+    for (int d = 0; d < 3; ++d) {
+      constraint_power_ -= mass_[i] * a[3 * i + d] * constraints_[c].velocity[d];
+      a[3 * i + d] = 0;
+    }
   }
 }
 
 void Dynamics::constrain_velocity(double t, double* v) const {
-  for (const Held& h : held_) {
-    if (t >= h.release_at) continue;
-    for (int i : h.particles)
-      for (int k = 0; k < 3; ++k) v[3 * i + k] = h.velocity[k];
+  for (std::size_t k = 0; k < held_particles_.size(); ++k) {
+    const int c = active_constraint(k, t);
+    if (c < 0) continue;
+    for (int d = 0; d < 3; ++d) v[3 * held_particles_[k] + d] = constraints_[c].velocity[d];
   }
 }
 

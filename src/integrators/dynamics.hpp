@@ -25,16 +25,18 @@ class Dynamics {
   double constraint_power() const { return constraint_power_; }
 
  private:
-  struct Held {
-    std::vector<int> particles;
-    double velocity[3];
-    double release_at;
-  };
+  // The constraint holding particle held_particles_[k] at time t: the last one in config order
+  // that contains it and is not yet released, or −1.
+  int active_constraint(std::size_t k, double t) const;
+
   Model& model_;
   std::vector<double> mass_;
   double gravity_[3];
   double damping_;
-  std::vector<Held> held_;
+  std::vector<Constraint> constraints_;
+  std::vector<int> held_particles_;  // particles inside at least one constraint region
+  std::vector<int> held_offsets_;    // CSR: constraints holding each of held_particles_
+  std::vector<int> held_by_;
   std::vector<double> force_;
   double constraint_power_ = 0;
 };

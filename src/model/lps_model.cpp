@@ -165,7 +165,13 @@ void LpsModel::break_bond(std::size_t b) {
 }
 
 std::size_t LpsModel::bytes_per_bond() const {
-  return sizeof(int) + sizeof(double) + 3 * sizeof(float);  // neighbour, |ξ|, ω, c_ij, c_ji
+  // neighbour, |ξ|, reverse index; ω, c_ij, c_ji
+  return 2 * sizeof(int) + sizeof(double) + 3 * sizeof(float);
+}
+
+std::size_t LpsModel::bytes_read_per_bond() const {
+  // dilatation pass: neighbour, |ξ|, ω, c_ij; force pass: the same and c_ji
+  return 2 * (sizeof(int) + sizeof(double) + 2 * sizeof(float)) + sizeof(float);
 }
 
 }  // namespace fissure

@@ -17,6 +17,7 @@ class LpsModel final : public Model {
   void energy_density(const double* y, double* w) override;
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
+  std::size_t bytes_read_per_bond() const override;
   void break_bond(std::size_t b) override;
 
  private:

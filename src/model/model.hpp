@@ -40,8 +40,11 @@ class Model {
   // Removes bond b of its row for good (fracture): it carries no force and stores no energy.
   // The same bond in the other row (Families::reverse) is removed by its own call.
   virtual void break_bond(std::size_t b) = 0;
-  // Bytes of per-bond data the force kernel streams.
+  // Bytes stored per directed bond: the families (neighbour, |ξ|, reverse index) and the
+  // model's own bond data.
   virtual std::size_t bytes_per_bond() const = 0;
+  // Bytes of bond data one force evaluation reads per directed bond (all passes).
+  virtual std::size_t bytes_read_per_bond() const = 0;
 
  protected:
   const Particles& particles_;

@@ -48,6 +48,12 @@ PaperModel::PaperModel(const Particles& particles, const Families& families,
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
       omega_[b] = materials_.horizon[i] / families.reference_length[b];  // Eq 5
   dilatation_.assign(particles.count(), 0.0);
+  a_.resize(particles.count());
+  b_.resize(particles.count());
+  for (int i = 0; i < particles.count(); ++i) {
+    a_[i] = a_constant(materials_.bulk_modulus[i], materials_.horizon[i]);
+    b_[i] = b_constant(materials_.shear_modulus[i], materials_.horizon[i]);
+  }
 }
 
 void PaperModel::forces(const double* y, double* f) {
@@ -77,11 +83,8 @@ void PaperModel::forces(const double* y, double* f) {
       const BondGeometry g = bond_geometry(x, y, i, j, xi[b]);
       const double e = g.length - xi[b];
       auto A = [&](int p) {
-        const double delta = materials_.horizon[p];
-        const double a = a_constant(materials_.bulk_modulus[p], delta);
-        const double bb = b_constant(materials_.shear_modulus[p], delta);
         const double lt = g.lambda * dilatation_[p];
-        return 4.0 * omega_[b] * (a * lt + bb * (e - 0.25 * delta * lt));
+        return 4.0 * omega_[b] * (a_[p] * lt + b_[p] * (e - 0.25 * materials_.horizon[p] * lt));
       };
       const double t = 0.5 * (A(i) + A(j)) * V[j];
       for (int k = 0; k < 3; ++k) force[k] += t * g.n[k];
@@ -126,7 +129,11 @@ double PaperModel::stable_time_step() const {
 void PaperModel::break_bond(std::size_t b) { omega_[b] = 0; }
 
 std::size_t PaperModel::bytes_per_bond() const {
-  return sizeof(int) + 2 * sizeof(double);  // neighbour, |ξ|, ω
+  return 2 * sizeof(int) + 2 * sizeof(double);  // neighbour, |ξ|, reverse index, ω
+}
+
+std::size_t PaperModel::bytes_read_per_bond() const {
+  return 2 * (sizeof(int) + 2 * sizeof(double));  // neighbour, |ξ|, ω in both passes
 }
 
 }  // namespace fissure

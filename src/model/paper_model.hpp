@@ -16,10 +16,12 @@ class PaperModel final : public Model {
   void energy_density(const double* y, double* w) override;
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
+  std::size_t bytes_read_per_bond() const override;
   void break_bond(std::size_t b) override;
 
  private:
   std::vector<double> omega_;  // ω_ij = δ/|ξ| (Eq 5)
+  std::vector<double> a_, b_;  // a and b of Eq 10 per particle
 };
 
 }  // namespace fissure

@@ -245,6 +245,10 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
       r.check_keys(n[i], p, {"name", "region"});
       Probe probe{r.string(n[i]["name"], join(p, "name")),
                   read_region(r, n[i]["region"], join(p, "region"))};
+      if (probe.name.empty() ||
+          probe.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                       "0123456789_-") != std::string::npos)
+        r.fail(join(p, "name"), "use letters, digits, '_' and '-' only (it names CSV columns)");
       for (const auto& other : c.probes)
         if (other.name == probe.name) r.fail(join(p, "name"), "duplicate probe name");
       c.probes.push_back(probe);
@@ -253,6 +257,7 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   const YAML::Node out = root["output"];
   if (out) r.check_keys(out, "output", {"dir", "every", "probe_every"});
   c.output.dir = out && out["dir"] ? r.string(out["dir"], "output.dir") : "out/" + c.name;
+  if (c.output.dir.empty()) r.fail("output.dir", "must not be empty");
   c.output.every =
       out && out["every"] ? r.positive(out["every"], "output.every") : c.time.end / 100;
   c.output.probe_every = out && out["probe_every"]

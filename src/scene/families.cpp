@@ -1,8 +1,12 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <nanoflann.hpp>
 #include <numeric>
+#include <stdexcept>
 
 #include "scene/particles.hpp"
 
@@ -54,13 +58,19 @@ Families build_families(const Particles& particles, const std::vector<double>& h
       tree.radiusSearch(&particles.reference[3 * i], delta * delta, matches,
                         nanoflann::SearchParams(32, 0, false));
       auto& row = rows[i];
-      for (const auto& [j, dist2] : matches)
-        if (static_cast<int>(j) != i && particles.body[j] == body && dist2 > 0)
-          row.push_back(static_cast<int>(j));
+      for (const auto& match : matches) {
+        const int j = static_cast<int>(match.first);
+        if (j != i && particles.body[j] == body) row.push_back(j);
+      }
       std::sort(row.begin(), row.end());
     }
   }
 
+  long long total = 0;
+  for (const auto& row : rows) total += static_cast<long long>(row.size());
+  if (total > std::numeric_limits<int>::max())
+    throw std::length_error(fmt::format(
+        "{} bonds exceed the 2^31 this build indexes; coarsen resolution or lower horizon", total));
   Families f;
   f.offsets.assign(n + 1, 0);
   for (int i = 0; i < n; ++i) f.offsets[i + 1] = f.offsets[i] + static_cast<int>(rows[i].size());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.hpp"
 #include "mesh/geometry.hpp"
@@ -12,30 +13,25 @@ namespace fissure {
 
 namespace {
 
-TetMesh tetrahedralize_body(const Body& body, const std::string& key) {
+// Tetrahedralizes a box, sphere, cylinder or mesh body at its resolution λ.
+TetMesh tetrahedralize_body(const Body& body, const std::string& config_file, std::size_t index) {
   const Geometry& g = body.geometry;
   const double lambda = body.resolution;
   try {
-    switch (g.kind) {
-      case Geometry::Kind::box:
-        return tetrahedralize_box(g.min, g.max, lambda);
-      case Geometry::Kind::sphere:
-        return tetrahedralize_sphere(g.center, g.radius, lambda);
-      case Geometry::Kind::cylinder:
-        return tetrahedralize_cylinder(g.p0, g.p1, g.radius, lambda);
-      case Geometry::Kind::mesh: {
-        TetMesh mesh = load_mesh_file(g.file, lambda / g.scale);
-        for (std::size_t k = 0; k < mesh.vertices.size(); ++k)
-          mesh.vertices[k] = g.scale * mesh.vertices[k] + g.translate[k % 3];
-        return mesh;
-      }
-      case Geometry::Kind::points:
-        break;
-    }
+    if (g.kind == Geometry::Kind::box) return tetrahedralize_box(g.min, g.max, lambda);
+    if (g.kind == Geometry::Kind::sphere) return tetrahedralize_sphere(g.center, g.radius, lambda);
+    if (g.kind == Geometry::Kind::cylinder)
+      return tetrahedralize_cylinder(g.p0, g.p1, g.radius, lambda);
+    TetMesh mesh = load_mesh_file(g.file, lambda / g.scale);
+    for (std::size_t k = 0; k < mesh.vertices.size(); ++k)
+      mesh.vertices[k] = g.scale * mesh.vertices[k] + g.translate[k % 3];
+    return mesh;
   } catch (const InputError& e) {
-    throw InputError(e.file(), key, e.reason());
+    // A primitive has no file of its own: its errors are about the resolution in the config.
+    if (e.file().empty())
+      throw InputError(config_file, fmt::format("bodies[{}].resolution", index), e.reason());
+    throw InputError(e.file(), fmt::format("bodies[{}].geometry", index), e.reason());
   }
-  return {};
 }
 
 // One particle per tet at its barycentre, with the tet's volume and mass (paper §5.2).
@@ -84,6 +80,31 @@ void add_point_particles(const Body& body, int body_index, const std::string& ke
   }
 }
 
+// Every particle needs a family, and no two particles may coincide (a zero-length bond has no
+// direction, and near-coincident ones would make the stable step vanish).
+void check_families(const Scene& scene) {
+  const Particles& p = scene.particles;
+  const Families& f = scene.families;
+  for (int i = 0; i < p.count(); ++i) {
+    const int body = p.body[i];
+    const double delta = scene.horizon_of_body[body];
+    const double* x = &p.reference[3 * i];
+    if (f.offsets[i + 1] == f.offsets[i])
+      throw InputError(scene.config.file, fmt::format("bodies[{}].horizon", body),
+                       fmt::format("the particle at ({:.6g}, {:.6g}, {:.6g}) has no other particle "
+                                   "within the horizon δ = {:.6g} m; raise horizon or refine "
+                                   "resolution",
+                                   x[0], x[1], x[2], delta));
+    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b)
+      if (f.reference_length[b] < 1e-6 * delta)
+        throw InputError(
+            scene.config.file, fmt::format("bodies[{}].geometry", body),
+            fmt::format("two particles at ({:.6g}, {:.6g}, {:.6g}) are {:.3g} m apart, "
+                        "closer than 1e-6 horizons",
+                        x[0], x[1], x[2], f.reference_length[b]));
+  }
+}
+
 }  // namespace
 
 Scene build_scene(const Config& config) {
@@ -97,7 +118,8 @@ Scene build_scene(const Config& config) {
     if (body.geometry.kind == Geometry::Kind::points)
       add_point_particles(body, static_cast<int>(b), key, scene.particles);
     else
-      add_tet_particles(tetrahedralize_body(body, key), static_cast<int>(b), body, scene.particles);
+      add_tet_particles(tetrahedralize_body(body, config.file, b), static_cast<int>(b), body,
+                        scene.particles);
     if (scene.particles.count() == before)
       throw InputError(config.file, key,
                        fmt::format("body '{}' has no particles (is the geometry smaller than "
@@ -108,7 +130,12 @@ Scene build_scene(const Config& config) {
     smallest_horizon = b == 0 ? delta : std::min(smallest_horizon, delta);
   }
   sort_spatially(scene.particles, 0.5 * smallest_horizon);
-  scene.families = build_families(scene.particles, scene.horizon_of_body);
+  try {
+    scene.families = build_families(scene.particles, scene.horizon_of_body);
+  } catch (const std::length_error& e) {
+    throw InputError(config.file, "bodies", e.what());
+  }
+  check_families(scene);
   return scene;
 }
 

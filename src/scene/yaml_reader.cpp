@@ -50,8 +50,13 @@ void YamlReader::require_map(const YAML::Node& node, const std::string& path) co
 void YamlReader::check_keys(const YAML::Node& node, const std::string& path,
                             const std::vector<std::string>& allowed) const {
   require_map(node, path);
+  std::vector<std::string> seen;
   for (const auto& entry : node) {
-    const std::string key = entry.first.as<std::string>();
+    if (!entry.first.IsScalar()) fail(path, "a key must be a plain name, not a list or map");
+    const std::string key = entry.first.Scalar();
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      fail(join(path, key), "duplicate key");
+    seen.push_back(key);
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     const std::string hint = nearest(key, allowed);
     std::string valid;
@@ -132,6 +137,7 @@ static void set_path(YAML::Node node, const std::vector<std::string>& parts, std
   const std::string& part = parts[k];
   const bool last = k + 1 == parts.size();
   if (is_index(part) && node.IsSequence()) {
+    if (part.size() > 9) throw InputError(file, key, fmt::format("index {} out of range", part));
     const std::size_t index = std::stoul(part);
     if (index >= node.size())
       throw InputError(file, key,

@@ -32,6 +32,8 @@ TEST_P(BadInput, ClearMessageAndExitCodeTwo) {
   test::write_file(config, c.yaml);
   test::write_file(dir / "broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
   test::write_file(dir / "empty.txt", "# no particles here\n");
+  test::write_file(dir / "twins.txt", "0 0 0 1e-6\n0 0 0 1e-6\n0.01 0 0 1e-6\n");
+  test::write_file(dir / "twins.txt", "0 0 0 1e-6\n0 0 0 1e-6\n0.01 0 0 1e-6\n");
   const auto outcome = test::run_fissure("info " + config.string() + " " + c.args);
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("error: "), std::string::npos) << outcome.output;
@@ -42,30 +44,47 @@ TEST_P(BadInput, ClearMessageAndExitCodeTwo) {
 
 INSTANTIATE_TEST_SUITE_P(
     Classes, BadInput,
-    ::testing::Values(BadCase{"unknown_key", scene(kBox, ", densty: 3"), "",
-                              "bodies[0].material.densty: unknown key; did you mean 'density'?"},
-                      BadCase{"wrong_type", scene(kBox), "--set bodies[0].horizon=wide",
-                              "bodies[0].horizon: expected a number, got 'wide'"},
-                      BadCase{"missing_mesh", scene("{mesh: {file: nowhere.obj}}"), "",
-                              "nowhere.obj: bodies[0].geometry:"},
-                      BadCase{"malformed_mesh", scene("{mesh: {file: broken.obj}}"), "",
-                              "broken.obj: bodies[0].geometry:"},
-                      BadCase{"density", scene(kBox), "--set bodies[0].material.density=-1",
-                              "bodies[0].material.density: must be positive"},
-                      BadCase{"bulk_modulus", scene(kBox),
-                              "--set bodies[0].material.bulk_modulus=0",
-                              "bodies[0].material.bulk_modulus: must be positive"},
-                      BadCase{"shear_modulus", scene(kBox),
-                              "--set bodies[0].material.shear_modulus=-5",
-                              "bodies[0].material.shear_modulus: must be positive"},
-                      BadCase{"resolution", scene(kBox), "--set bodies[0].resolution=0",
-                              "bodies[0].resolution: must be positive"},
-                      BadCase{"horizon", scene(kBox), "--set bodies[0].horizon=0",
-                              "bodies[0].horizon: must be positive"},
-                      BadCase{"no_particles", scene("{points: {file: empty.txt}}"), "",
-                              "empty.txt: bodies[0].geometry: the points file holds no particles"},
-                      BadCase{"integrator", scene(kBox), "--set integrator.type=verlet",
-                              "integrator.type: unknown integrator 'verlet'"}),
+    ::testing::Values(
+        BadCase{"unknown_key", scene(kBox, ", densty: 3"), "",
+                "bodies[0].material.densty: unknown key; did you mean 'density'?"},
+        BadCase{"wrong_type", scene(kBox), "--set bodies[0].horizon=wide",
+                "bodies[0].horizon: expected a number, got 'wide'"},
+        BadCase{"missing_mesh", scene("{mesh: {file: nowhere.obj}}"), "",
+                "nowhere.obj: bodies[0].geometry:"},
+        BadCase{"malformed_mesh", scene("{mesh: {file: broken.obj}}"), "",
+                "broken.obj: bodies[0].geometry:"},
+        BadCase{"density", scene(kBox), "--set bodies[0].material.density=-1",
+                "bodies[0].material.density: must be positive"},
+        BadCase{"bulk_modulus", scene(kBox), "--set bodies[0].material.bulk_modulus=0",
+                "bodies[0].material.bulk_modulus: must be positive"},
+        BadCase{"shear_modulus", scene(kBox), "--set bodies[0].material.shear_modulus=-5",
+                "bodies[0].material.shear_modulus: must be positive"},
+        BadCase{"resolution", scene(kBox), "--set bodies[0].resolution=0",
+                "bodies[0].resolution: must be positive"},
+        BadCase{"horizon", scene(kBox), "--set bodies[0].horizon=0",
+                "bodies[0].horizon: must be positive"},
+        BadCase{"no_particles", scene("{points: {file: empty.txt}}"), "",
+                "empty.txt: bodies[0].geometry: the points file holds no particles"},
+        BadCase{"integrator", scene(kBox), "--set integrator.type=verlet",
+                "integrator.type: unknown integrator 'verlet'"},
+        BadCase{"duplicate_key", scene(kBox, ", density: 5"), "",
+                "bodies[0].material.density: duplicate key"},
+        BadCase{"list_as_key", scene(kBox) + "[1, 2]: 3\n", "",
+                "a key must be a plain name, not a list or map"},
+        BadCase{"empty_family", scene(kBox), "--set bodies[0].horizon=0.05",
+                "bodies[0].horizon: the particle at"},
+        BadCase{"coincident_points", scene("{points: {file: twins.txt}}"), "",
+                "bodies[0].geometry: two particles at"},
+        BadCase{"huge_mesh", scene(kBox), "--set bodies[0].resolution=1e-5",
+                "scene.yaml: bodies[0].resolution: edge length"},
+        BadCase{"probe_name",
+                scene(kBox) + "probes:\n  - {name: 'a,b', region: {sphere: {center: [0, 0, 0], "
+                              "radius: 1}}}\n",
+                "", "probes[0].name: use letters, digits"},
+        BadCase{"empty_output_dir", scene(kBox), "--set \"output.dir=''\"",
+                "output.dir: must not be empty"},
+        BadCase{"index_overflow", scene(kBox), "--set bodies[99999999999999999999].x=1",
+                "index 99999999999999999999 out of range"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(BadInput, MissingConfigFile) {

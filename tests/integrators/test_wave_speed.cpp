@@ -51,9 +51,9 @@ TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
       u[p].push_back(sum / members[p].size());
     }
   }
-  // Fit u = v0 (t − t_arrival) on the window where the front has clearly passed:
-  // from 0.2 s·(probe distance margin) after the nominal arrival to the end of the record
-  // (before the reflection from the far end at 1.5 m can return to x = 1.0).
+  // Fit u = v0 (t − t_arrival) on the window where the front has clearly passed: from 0.1 m of
+  // travel (0.1/c) after the nominal arrival to the end of the record, before the reflection
+  // from the far end at 1.5 m can return to x = 1.0.
   double arrival[2];
   for (int p = 0; p < 2; ++p) {
     const double t0 = probes[p] / c + 0.1 / c;

@@ -38,8 +38,8 @@ TEST(SurfaceEffect, CalibratedDilatationHalvesThinBarStiffening) {
     std::printf("width %.2f m (%.1f horizons): E_eff/E plain %.3f, calibrated %.3f\n", width,
                 width / delta, plain, calibrated);
     // Both are stiffer than the continuum (truncated families), the calibration removes at least
-    // 40% of the excess, and at ≥ 2.8 horizons the remainder is under 10%, which keeps the bar
-    // wave speed (∝ √E) within the 5% the wave test demands.
+    // 40% of the excess, and at 2.76 horizons or more the remainder is under 10%, which keeps the
+    // bar wave speed (∝ √E) within the 5% the wave test demands.
     EXPECT_GT(plain, 1.0);
     EXPECT_GT(calibrated, 1.0);
     EXPECT_LT(calibrated - 1.0, 0.6 * (plain - 1.0));

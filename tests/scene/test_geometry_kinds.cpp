@@ -146,7 +146,7 @@ TEST(GeometryKinds, PointsFileWithVelocities) {
       }
   test::write_file(dir / "cloud.xyz", text);
   const Scene scene =
-      scene_in(dir, "{points: {file: cloud.xyz, scale: 2, translate: [0, 0, 1]}}", 0.1);
+      scene_in(dir, "{points: {file: cloud.xyz, scale: 2, translate: [0, 0, 1]}}", 0.2);
   const Particles& p = scene.particles;
   ASSERT_EQ(p.count(), static_cast<int>(lines.size()));
   std::vector<bool> matched(lines.size(), false);
@@ -176,12 +176,12 @@ const char* kCubeEle =
     "6 4 0\n"
     "1 1 2 4 8\n2 1 4 3 8\n3 1 3 7 8\n4 1 7 5 8\n5 1 5 6 8\n6 1 6 2 8\n";
 
-// Read as is: one particle per listed tet even though the resolution (0.1) would ask TetGen for
-// hundreds, each with volume 1/6 at its tet's barycentre. Kuhn tet σ has the corners
-// 0, e_σ1, e_σ1 + e_σ2, (1,1,1), so its barycentre is a permutation of (3/4, 1/2, 1/4)
-// (translated by (0, 0, 5)): the six barycentres are the six permutations. The inputs are
-// small integers, so volumes and barycentres are exact up to one division: 1e-15.
-// Either file of the pair may be named.
+// Read as is: one particle per listed tet even though TetGen at the resolution (1.0, chosen so
+// that δ = 1.45 reaches every barycentre) would make more, each with volume 1/6 at its tet's
+// barycentre. Kuhn tet σ has the corners 0, e_σ1, e_σ1 + e_σ2, (1,1,1), so its barycentre is a
+// permutation of (3/4, 1/2, 1/4) (translated by (0, 0, 5)): the six barycentres are the six
+// permutations. The inputs are small integers, so volumes and barycentres are exact up to one
+// division: 1e-15. Either file of the pair may be named.
 TEST(GeometryKinds, TetgenNodeElePairReadAsIs) {
   const auto dir = test::scratch_dir("geometry_tetgen");
   test::write_file(dir / "cube.node", kCubeNode);
@@ -189,7 +189,7 @@ TEST(GeometryKinds, TetgenNodeElePairReadAsIs) {
   for (const char* name : {"cube.node", "cube.ele"}) {
     SCOPED_TRACE(name);
     const Scene scene =
-        scene_in(dir, fmt::format("{{mesh: {{file: {}, translate: [0, 0, 5]}}}}", name), 0.1);
+        scene_in(dir, fmt::format("{{mesh: {{file: {}, translate: [0, 0, 5]}}}}", name), 1.0);
     const Particles& p = scene.particles;
     ASSERT_EQ(p.count(), 6);
     EXPECT_NEAR(total_volume(p), 1.0, 1e-14);
@@ -218,7 +218,7 @@ TEST(GeometryKinds, TetgenBaseNameIsAccepted) {
   test::write_file(dir / "cube.node", kCubeNode);
   test::write_file(dir / "cube.ele", kCubeEle);
   try {
-    const Scene scene = scene_in(dir, "{mesh: {file: cube}}", 0.1);
+    const Scene scene = scene_in(dir, "{mesh: {file: cube}}", 1.0);
     EXPECT_EQ(scene.particles.count(), 6);
   } catch (const InputError& e) {
     ADD_FAILURE() << "base name rejected: " << e.what();
