@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // 21 steps of exactly 1 ms (end is a multiple of dt), frames every 5 ms (t = 0 … 0.020: 5
-// frames; none at the end, which is not a multiple), probe rows every 2 ms (t = 0 … 0.020: 11)
+// frames) plus the final frame at the end (0.021), probe rows every 2 ms (t = 0 … 0.020: 11)
 // plus the row at the end (0.021): 12 rows. Soft material so 1 ms is under the stable step.
 const char* kScene =
     "name: tiny\n"
@@ -215,12 +215,13 @@ TEST(Output, PvdListsEveryFrameWithIncreasingTime) {
     EXPECT_TRUE(fs::exists(run.out / file)) << file;
     listed.insert(file);
   }
-  // Frames at t = 0, 5, 10, 15, 20 ms: the step times are sums of 1 ms steps and printed with
-  // 9 significant digits, so 1e-9 s is far above their round-off and far below a step.
-  ASSERT_EQ(times.size(), 5u) << pvd;
+  // Frames at t = 0, 5, 10, 15, 20 ms and the final one at 21 ms: the step times are sums of
+  // 1 ms steps and printed with 9 significant digits, so 1e-9 s is far above their round-off
+  // and far below a step.
+  ASSERT_EQ(times.size(), 6u) << pvd;
   ASSERT_EQ(listed.size(), times.size()) << "a file is listed twice";
   for (std::size_t k = 0; k < times.size(); ++k) {
-    EXPECT_NEAR(times[k], k * kEvery, 1e-9);
+    EXPECT_NEAR(times[k], k < 5 ? k * kEvery : kEnd, 1e-9);
     if (k > 0) {
       EXPECT_GT(times[k], times[k - 1]);
     }
