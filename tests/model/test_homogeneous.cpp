@@ -1,5 +1,6 @@
 // Homogeneous deformations: the model reproduces κ and μ, θ = tr ε, and zero interior force.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -15,7 +16,8 @@ namespace {
 // A simple cubic lattice of n³ particles of spacing h, read through a points file, so every
 // interior family is centrosymmetric.
 Scene lattice_scene(int n, double h, const std::string& model) {
-  const auto path = std::filesystem::temp_directory_path() / ("fissure_lattice_" + model + ".txt");
+  const auto path = std::filesystem::temp_directory_path() /
+                    fmt::format("fissure_lattice_{}_{}_{}.txt", model, n, getpid());
   {
     std::ofstream out(path);
     for (int i = 0; i < n; ++i)
