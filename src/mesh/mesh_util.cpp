@@ -171,4 +171,14 @@ double regular_tet_volume(double edge_length) {
   return edge_length * edge_length * edge_length / (6.0 * std::sqrt(2.0));
 }
 
+void append_vertex(const Line& line, const std::string& path, std::vector<double>& vertices) {
+  if (line.tokens.size() < 4) fail_at_line(path, line.number, "vertex needs x y z");
+  for (int k = 1; k <= 3; ++k) {
+    double x;
+    if (!parse_double(line.tokens[k], x))
+      fail_at_line(path, line.number, fmt::format("invalid number '{}'", line.tokens[k]));
+    vertices.push_back(x);
+  }
+}
+
 }  // namespace fissure::mesh_detail

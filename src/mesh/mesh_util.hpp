@@ -33,6 +33,9 @@ bool parse_int(std::string_view token, long long& value);
 // InputError(path, "", "line N: reason").
 [[noreturn]] void fail_at_line(const std::string& path, int line, const std::string& reason);
 
+// Appends the coordinates in tokens 1–3 of a vertex line ("v x y z", "vertex x y z").
+void append_vertex(const Line& line, const std::string& path, std::vector<double>& vertices);
+
 // det[b - a, c - a, d - a] / 6 of the tet `tet` (4 indices into xyz `vertices`).
 double tet_signed_volume(const double* vertices, const int* tet);
 

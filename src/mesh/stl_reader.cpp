@@ -48,14 +48,7 @@ SurfaceMesh parse_ascii(std::string_view text, const std::string& path) {
   for (const Line& line : tokenized_lines(text, false)) {
     const std::string_view key = line.tokens[0];
     if (key == "vertex") {
-      if (line.tokens.size() < 4) fail_at_line(path, line.number, "vertex needs x y z");
-      for (int k = 1; k <= 3; ++k) {
-        double x;
-        if (!parse_double(line.tokens[k], x)) {
-          fail_at_line(path, line.number, fmt::format("invalid number '{}'", line.tokens[k]));
-        }
-        s.vertices.push_back(x);
-      }
+      append_vertex(line, path, s.vertices);
       ++corners;
     } else if (key == "endfacet") {
       if (corners != 3) {
