@@ -10,7 +10,7 @@
 
 #include "app/energy.hpp"
 #include "core/error.hpp"
-#include "fracture/bond_breaking.hpp"
+#include "fracture/post_step.hpp"
 #include "integrators/integrator.hpp"
 #include "io/atomic_file.hpp"
 #include "io/probes_csv.hpp"
@@ -83,7 +83,7 @@ class Simulation {
   Scene scene_;
   std::unique_ptr<Model> model_;
   std::unique_ptr<Dynamics> dynamics_;
-  std::unique_ptr<BondBreaking> bond_breaking_;  // only when the scene asks for fracture
+  std::unique_ptr<PostStep> post_step_;
   std::unique_ptr<ProbesCsv> probes_;
   std::unique_ptr<PvdIndex> pvd_;
   State state_;
@@ -100,7 +100,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   scene_ = build_scene(config);
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
-  if (config.fracture_enabled()) bond_breaking_ = std::make_unique<BondBreaking>(scene_, *model_);
+  post_step_ = std::make_unique<PostStep>(scene_, *model_);
   summary_.particles = scene_.particles.count();
   summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
   summary_.stable_dt = model_->stable_time_step();
@@ -190,8 +190,7 @@ RunSummary Simulation::run() {
     // The last step is shortened to land on time.end.
     const double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
     integrator_->step(*dynamics_, state_, h);
-    if (bond_breaking_ && bond_breaking_->run(state_.position.data()) > 0)
-      integrator_->bonds_changed();
+    if (post_step_->run(state_.position.data())) integrator_->bonds_changed();
     constraint_work_ += dt * dynamics_->constraint_power();
     if (config_.damping > 0)
       damping_loss_ +=
@@ -201,7 +200,7 @@ RunSummary Simulation::run() {
       summary_.status = "nonfinite";
       summary_.wall_seconds = seconds_since(setup_start_);
       summary_.peak_rss_mb = peak_rss_mb();
-      if (bond_breaking_) summary_.broken_bonds = static_cast<long>(bond_breaking_->broken_bonds());
+      summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
       write_summary(config_.output.dir + "/summary.json", summary_);
       const double* x = &scene_.particles.reference[3 * bad];
       throw RunError(fmt::format(
@@ -225,7 +224,7 @@ RunSummary Simulation::run() {
   summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
   summary_.wall_seconds = seconds_since(setup_start_);
   summary_.peak_rss_mb = peak_rss_mb();
-  if (bond_breaking_) summary_.broken_bonds = static_cast<long>(bond_breaking_->broken_bonds());
+  summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
   write_summary(config_.output.dir + "/summary.json", summary_);
   return summary_;
 }

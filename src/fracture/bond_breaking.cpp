@@ -58,9 +58,11 @@ std::size_t BondBreaking::run(const double* y) {
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
+  const std::vector<double>& plastic = model_.plastic_extension();
+  const bool plastic_bonds = !plastic.empty();
   std::size_t exceeded = 0;
-  // s^ω_ij = (1 + αφ_i) e_ij / δ (Eq 19 with Eq 5's ω = δ/|ξ| and s^e = e/|ξ|, Eq 18), in
-  // tension only: a compressed bond never breaks.
+  // s^ω_ij = (1 + αφ_i)(e_ij − e^p_ij)/δ (Eq 19 with Eq 5's ω = δ/|ξ| and s^e = (e − e^p)/|ξ|,
+  // Eq 18), in tension only: a compressed bond never breaks.
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
   for (int i = 0; i < n; ++i) {
     const double threshold = critical_stretch_[i] * horizon_[i] / (1.0 + alpha_[i] * damage_[i]);
@@ -71,7 +73,7 @@ std::size_t BondBreaking::run(const double* y) {
       const double e =
           std::sqrt((yj[0] - yi[0]) * (yj[0] - yi[0]) + (yj[1] - yi[1]) * (yj[1] - yi[1]) +
                     (yj[2] - yi[2]) * (yj[2] - yi[2])) -
-          xi[b];
+          xi[b] - (plastic_bonds ? plastic[b] : 0.0);
       exceeded_[b] = e > threshold;
       exceeded += exceeded_[b];
     }

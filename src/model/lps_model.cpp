@@ -9,8 +9,8 @@
 namespace fissure {
 
 LpsModel::LpsModel(const Particles& particles, const Families& families, MaterialPoints materials,
-                   bool surface_correction)
-    : Model(particles, families, std::move(materials)) {
+                   bool surface_correction, const PlasticPoints* plasticity)
+    : Model(particles, families, std::move(materials)), plastic_(plasticity != nullptr) {
   const int n = particles.count();
   const auto& off = families.offsets;
   const auto& nbr = families.neighbors;
@@ -50,10 +50,29 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
       bond_weight_[b] = static_cast<float>(c[b]);
       bond_reverse_weight_[b] = static_cast<float>(c[families.reverse[b]]);
     }
+  if (plastic_) set_up_plasticity(*plasticity);
+}
+
+// A^c_i = √(2Ψ0) (Eq 14), or from a yield stress: the per-bond criterion |A_dev| ≤ A^c is a
+// maximum deviatoric stress criterion whose uniaxial yield stress is 1.5 τ_y with
+// A^c = 15 δ τ_y / m_i (notes §6), so A^c_i = 10 δ σ_y / m_i.
+void LpsModel::set_up_plasticity(const PlasticPoints& plasticity) {
+  const int n = particles_.count();
+  plastic_extension_.assign(families_.directed_bonds(), 0.0);
+  plastic_dilatation_.assign(n, 0.0);
+  yield_force_.resize(n);
+  max_plastic_stretch_ = plasticity.max_plastic_stretch;
+  for (int i = 0; i < n; ++i)
+    yield_force_[i] =
+        std::isnan(plasticity.yield_potential[i])
+            ? 10.0 * materials_.horizon[i] * plasticity.yield_stress[i] / weighted_volume_[i]
+            : std::sqrt(2.0 * plasticity.yield_potential[i]);
 }
 
 // θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped and calibrated weights; c = 3ω|ξ|/m_i uncorrected),
-// and the per-particle terms of the force: D_i = κθ_i − (B_i/3) Σ_j ω ê_ij |ξ| V_j, B_i θ_i/3.
+// and the per-particle terms of the force: D_i = κθ_i − (B_i/3) Σ_j ω ê_ij |ξ| V_j and
+// S_i = B_i (θ_i − θ^p_i)/3, with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3 (notes §6).
+template <bool Plastic>
 void LpsModel::compute_dilatation(const double* y) {
   const int n = particles_.count();
   const int* off = families_.offsets.data();
@@ -62,6 +81,7 @@ void LpsModel::compute_dilatation(const double* y) {
   const float* omega = bond_omega_.data();
   const float* c = bond_weight_.data();
   const double* V = particles_.volume.data();
+  const double* ep = plastic_extension_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
@@ -70,26 +90,32 @@ void LpsModel::compute_dilatation(const double* y) {
       const int j = nbr[b];
       const double* yj = y + 3 * j;
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-      const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j];  // e_ij V_j
-      theta += c[b] * extension;
-      moment += omega[b] * xi[b] * extension;
+      const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b];  // e_ij
+      theta += c[b] * extension * V[j];
+      if constexpr (Plastic)
+        moment += omega[b] * xi[b] * (extension - ep[b]) * V[j];
+      else
+        moment += omega[b] * xi[b] * extension * V[j];
     }
     const double B = deviatoric_coef_[i];
-    // Σ_j ω ê |ξ| V_j = Σ_j ω e |ξ| V_j − θ m/3 (zero without the calibration)
-    const double deviatoric_moment = moment - theta * weighted_volume_[i] / 3.0;
+    const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;
+    // Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p) |ξ| V_j − (θ − θ^p) m/3 (zero without the calibration)
+    const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
     dilatation_[i] = theta;
     pressure_term_[i] = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
-    shift_term_[i] = B * theta / 3.0;
+    shift_term_[i] = B * elastic_theta / 3.0;
   }
 }
 
 // F_i = −∂Π/∂y_i = V_i Σ_j (t_ij + t_ji) n_ij V_j (Eqs 2–3), with the bond force density
-// t_ij = ½A_ij = c_ij D_i + ω_ij (B_i e_ij − B_i θ_i |ξ|/3) (Eqs 4 and 8, corrected: notes §6).
-void LpsModel::forces(const double* y, double* f) {
-  compute_dilatation(y);
+// t_ij = ½A_ij = c_ij D_i + ω_ij B_i ê_ij (Eqs 4, 8 and 12, corrected: notes §6).
+template <bool Plastic>
+void LpsModel::compute_forces(const double* y, double* f) {
+  compute_dilatation<Plastic>(y);
   const int n = particles_.count();
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
+  const int* reverse = families_.reverse.data();
   const double* xi = families_.reference_length.data();
   const float* omega = bond_omega_.data();
   const float* c = bond_weight_.data();
@@ -98,6 +124,7 @@ void LpsModel::forces(const double* y, double* f) {
   const double* B = deviatoric_coef_.data();
   const double* S = shift_term_.data();
   const double* V = particles_.volume.data();
+  const double* ep = plastic_extension_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
@@ -109,8 +136,9 @@ void LpsModel::forces(const double* y, double* f) {
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const double extension = length - xi[b];
-      const double t = c[b] * Di + c_reverse[b] * D[j] +
-                       omega[b] * (extension * (Bi + B[j]) - xi[b] * (Si + S[j]));
+      double deviatoric = extension * (Bi + B[j]) - xi[b] * (Si + S[j]);
+      if constexpr (Plastic) deviatoric -= Bi * ep[b] + B[j] * ep[reverse[b]];
+      const double t = c[b] * Di + c_reverse[b] * D[j] + omega[b] * deviatoric;
       // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
       const double s = length > 0 ? t * V[j] / length : 0.0;
       f0 += s * d0;
@@ -123,27 +151,76 @@ void LpsModel::forces(const double* y, double* f) {
   }
 }
 
-// W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j, ê = e − θ_i|ξ|/3 (notes §3, §6).
+void LpsModel::forces(const double* y, double* f) {
+  if (plastic_)
+    compute_forces<true>(y, f);
+  else
+    compute_forces<false>(y, f);
+}
+
+// ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3 for the bonds of row i, after compute_dilatation.
+double LpsModel::deviatoric_extension(const double* y, int i, int b) const {
+  const double* yi = y + 3 * i;
+  const double* yj = y + 3 * families_.neighbors[b];
+  const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2];
+  const double xi = families_.reference_length[b];
+  const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi;
+  if (!plastic_) return extension - dilatation_[i] * xi / 3.0;
+  return extension - plastic_extension_[b] - (dilatation_[i] - plastic_dilatation_[i]) * xi / 3.0;
+}
+
+// W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j (notes §3, §6).
 void LpsModel::energy_density(const double* y, double* w) {
-  compute_dilatation(y);
+  if (plastic_)
+    compute_dilatation<true>(y);
+  else
+    compute_dilatation<false>(y);
   const int n = particles_.count();
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
-  const auto& xi = families_.reference_length;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double theta = dilatation_[i];
-    const double* yi = y + 3 * i;
     double sum = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double* yj = y + 3 * nbr[b];
-      const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2];
-      const double deviatoric =
-          std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b] - theta * xi[b] / 3.0;
+      const double deviatoric = deviatoric_extension(y, i, b);
       sum += bond_omega_[b] * particles_.volume[nbr[b]] * deviatoric * deviatoric;
     }
     w[i] = 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * deviatoric_coef_[i] * sum;
   }
+}
+
+// Return map after a completed step (Eqs 13–16, corrected: notes §5–6). The trial deviatoric
+// force A_dev = 4ωb ê = 2ωB_i ê (Eq 12) is projected onto the yield surface |A_dev| = A^c
+// (Eq 14) by Δe^p = (A_dev − A^c sign A_dev)/(4ωb), the consistent step (the paper's 1/(2b)
+// over-relaxes by 2ω), and e^p is capped at γ = max_plastic_stretch |ξ| (Eq 16).
+std::size_t LpsModel::update_plasticity(const double* y) {
+  if (!plastic_) return 0;
+  compute_dilatation<true>(y);
+  const int n = particles_.count();
+  const auto& off = families_.offsets;
+  std::size_t yielded = 0;
+#pragma omp parallel for reduction(+ : yielded) schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double B = deviatoric_coef_[i];
+    double plastic_theta = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const double stiffness = 2.0 * bond_omega_[b] * B;  // 4ωb
+      const double trial = stiffness * deviatoric_extension(y, i, b);
+      const double critical = yield_force_[i];
+      if (stiffness > 0 && std::abs(trial) > critical) {
+        const double updated =
+            plastic_extension_[b] + (trial - std::copysign(critical, trial)) / stiffness;
+        const double cap = max_plastic_stretch_[i] * families_.reference_length[b];
+        plastic_extension_[b] = std::clamp(updated, -cap, cap);
+        ++yielded;
+      }
+      plastic_theta +=
+          bond_weight_[b] * plastic_extension_[b] * particles_.volume[families_.neighbors[b]];
+    }
+    plastic_dilatation_[i] = plastic_theta;  // θ^p_i = Σ_j c_ij e^p_ij V_j
+  }
+  return yielded;
 }
 
 double LpsModel::stable_time_step() const {

@@ -2,8 +2,9 @@
 // The default elastic model: the paper's §4.1 with Λ dropped from Eqs 4, 6, 8, the weighted
 // volume m_i summed over each particle's actual family (linear peridynamic solid; notes §6), and
 // optionally the dilatation calibrated per particle so that it is exact near surfaces
-// (dilatation_calibration.hpp). Energy (per particle i, ê = e − θ_i|ξ|/3):
-//   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j.
+// (dilatation_calibration.hpp). Energy (per particle i, ê = e − e^p − (θ_i − θ^p_i)|ξ|/3):
+//   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j,
+// with the plastic extensions e^p (§4.2) held fixed between steps.
 #include "model/model.hpp"
 
 namespace fissure {
@@ -11,7 +12,7 @@ namespace fissure {
 class LpsModel final : public Model {
  public:
   LpsModel(const Particles& particles, const Families& families, MaterialPoints materials,
-           bool surface_correction);
+           bool surface_correction, const PlasticPoints* plasticity);
   std::string name() const override { return "lps"; }
   void forces(const double* y, double* f) override;
   void energy_density(const double* y, double* w) override;
@@ -19,9 +20,17 @@ class LpsModel final : public Model {
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
   void break_bond(std::size_t b) override;
+  bool plastic() const override { return plastic_; }
+  std::size_t update_plasticity(const double* y) override;
+  const std::vector<double>& plastic_extension() const override { return plastic_extension_; }
 
  private:
+  template <bool Plastic>
   void compute_dilatation(const double* y);
+  template <bool Plastic>
+  void compute_forces(const double* y, double* f);
+  double deviatoric_extension(const double* y, int i, int b) const;
+  void set_up_plasticity(const PlasticPoints& plasticity);
 
   // Per bond, single precision: the same rounded value serves both rows of a pair, so
   // action equals reaction exactly; V_j is applied in double precision in the kernels.
@@ -31,7 +40,13 @@ class LpsModel final : public Model {
   std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j
   std::vector<double> deviatoric_coef_;     // B_i = 15μ_i / m_i
   std::vector<double> pressure_term_;  // D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j, per force call
-  std::vector<double> shift_term_;     // B_i θ_i / 3, per force call
+  std::vector<double> shift_term_;     // B_i (θ_i − θ^p_i) / 3, per force call
+  // Plasticity, allocated only when the scene asks for it (the elastic kernel never reads them).
+  bool plastic_ = false;
+  std::vector<double> plastic_extension_;    // e^p_ij per bond (Eq 11)
+  std::vector<double> plastic_dilatation_;   // θ^p_i = Σ_j c_ij e^p_ij V_j
+  std::vector<double> yield_force_;          // A^c_i = √(2Ψ0) (Eq 14)
+  std::vector<double> max_plastic_stretch_;  // γ / |ξ| (Eq 16, Table 1)
 };
 
 }  // namespace fissure

@@ -1,5 +1,7 @@
 #include "model/model.hpp"
 
+#include <limits>
+
 #include "model/lps_model.hpp"
 #include "model/paper_model.hpp"
 #include "scene/scene.hpp"
@@ -34,8 +36,22 @@ std::unique_ptr<Model> make_model(const Scene& scene) {
   }
   if (scene.config.bodies.front().material.model == ModelVariant::paper)
     return std::make_unique<PaperModel>(particles, scene.families, std::move(m));
+  PlasticPoints plasticity;
+  if (scene.config.plasticity_enabled()) {
+    plasticity.yield_potential.resize(n);
+    plasticity.yield_stress.resize(n);
+    plasticity.max_plastic_stretch.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const PlasticitySettings& p = scene.config.bodies[particles.body[i]].material.plasticity;
+      // A body without plasticity in a plastic scene never yields.
+      plasticity.yield_potential[i] = p.enabled ? p.yield : std::numeric_limits<double>::infinity();
+      plasticity.yield_stress[i] = p.yield_stress;
+      plasticity.max_plastic_stretch[i] = p.max_plastic_stretch;
+    }
+  }
   return std::make_unique<LpsModel>(particles, scene.families, std::move(m),
-                                    scene.config.bodies.front().material.surface_correction);
+                                    scene.config.bodies.front().material.surface_correction,
+                                    scene.config.plasticity_enabled() ? &plasticity : nullptr);
 }
 
 }  // namespace fissure

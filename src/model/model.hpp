@@ -20,6 +20,13 @@ struct MaterialPoints {
   std::vector<double> horizon;        // δ [m]
 };
 
+// Per-particle plasticity constants (paper §4.2), expanded from the bodies.
+struct PlasticPoints {
+  std::vector<double> yield_potential;      // Ψ0 of Eq 13, or NaN where yield_stress is given
+  std::vector<double> yield_stress;         // σ_y [Pa], or NaN where Ψ0 is given
+  std::vector<double> max_plastic_stretch;  // γ / |ξ| (infinite: no cap)
+};
+
 class Model {
  public:
   Model(const Particles& particles, const Families& families, MaterialPoints materials)
@@ -40,6 +47,11 @@ class Model {
   // Removes bond b of its row for good (fracture): it carries no force and stores no energy.
   // The same bond in the other row (Families::reverse) is removed by its own call.
   virtual void break_bond(std::size_t b) = 0;
+  // Plasticity (paper §4.2): whether this model carries plastic extensions, the return map run
+  // by the post-step after a completed step (returns how many bonds yielded), and e^p per bond.
+  virtual bool plastic() const { return false; }
+  virtual std::size_t update_plasticity(const double*) { return 0; }
+  virtual const std::vector<double>& plastic_extension() const { return no_plastic_extension_; }
   // Bytes stored per directed bond: the families (neighbour, |ξ|, reverse index) and the
   // model's own bond data.
   virtual std::size_t bytes_per_bond() const = 0;
@@ -51,6 +63,9 @@ class Model {
   const Families& families_;
   MaterialPoints materials_;
   std::vector<double> dilatation_;
+
+ private:
+  std::vector<double> no_plastic_extension_;
 };
 
 // The model the scene's bodies ask for (material.model), set up for its particles.

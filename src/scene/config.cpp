@@ -17,6 +17,12 @@ bool Config::fracture_enabled() const {
   return !initial_cracks.empty();
 }
 
+bool Config::plasticity_enabled() const {
+  for (const Body& b : bodies)
+    if (b.material.plasticity.enabled) return true;
+  return false;
+}
+
 bool Region::contains(const double* p) const {
   if (kind == Kind::box)
     return p[0] >= min[0] && p[0] <= max[0] && p[1] >= min[1] && p[1] <= max[1] && p[2] >= min[2] &&
@@ -136,10 +142,26 @@ Crack read_crack(const YamlReader& r, const YAML::Node& node, const std::string&
   return crack;
 }
 
+PlasticitySettings read_plasticity(const YamlReader& r, const YAML::Node& node,
+                                   const std::string& path) {
+  r.check_keys(node, path, {"yield", "yield_stress", "max_plastic_stretch"});
+  PlasticitySettings p;
+  p.enabled = true;
+  if (static_cast<bool>(node["yield"]) == static_cast<bool>(node["yield_stress"]))
+    r.fail(path, "give either yield (Ψ0 of the paper's Eq 13) or yield_stress (Pa)");
+  if (node["yield"]) p.yield = r.positive(node["yield"], join(path, "yield"));
+  if (node["yield_stress"])
+    p.yield_stress = r.positive(node["yield_stress"], join(path, "yield_stress"));
+  if (node["max_plastic_stretch"])
+    p.max_plastic_stretch =
+        r.positive(node["max_plastic_stretch"], join(path, "max_plastic_stretch"));
+  return p;
+}
+
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
-  r.check_keys(
-      node, path,
-      {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction", "fracture"});
+  r.check_keys(node, path,
+               {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction",
+                "fracture", "plasticity"});
   Material m;
   if (node["model"]) {
     const std::string model = r.string(node["model"], join(path, "model"));
@@ -156,6 +178,11 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
   if (node["surface_correction"])
     m.surface_correction = r.boolean(node["surface_correction"], join(path, "surface_correction"));
   if (node["fracture"]) m.fracture = read_fracture(r, node["fracture"], join(path, "fracture"));
+  if (node["plasticity"]) {
+    m.plasticity = read_plasticity(r, node["plasticity"], join(path, "plasticity"));
+    if (m.model != ModelVariant::lps)
+      r.fail(join(path, "plasticity"), "plasticity needs model: lps (the default)");
+  }
   return m;
 }
 

@@ -37,6 +37,14 @@ struct FractureSettings {
   double alpha = 0;             // α: the criterion grows as (1 + α φ) with damage φ
 };
 
+// Plastic flow (paper §4.2, Eqs 11–16); absent means purely elastic.
+struct PlasticitySettings {
+  bool enabled = false;
+  double yield = std::numeric_limits<double>::quiet_NaN();               // Ψ0 of Eq 13
+  double yield_stress = std::numeric_limits<double>::quiet_NaN();        // σ_y [Pa], maps to Ψ0
+  double max_plastic_stretch = std::numeric_limits<double>::infinity();  // γ/|ξ|, Table 1
+};
+
 struct Material {
   ModelVariant model = ModelVariant::lps;
   double density = 0;
@@ -44,6 +52,7 @@ struct Material {
   double shear_modulus = 0;
   bool surface_correction = true;  // lps only: calibrated dilatation weights (docs/model.md)
   FractureSettings fracture;
+  PlasticitySettings plasticity;
 };
 
 struct Body {
@@ -106,6 +115,7 @@ struct Config {
   OutputSettings output;
 
   bool fracture_enabled() const;
+  bool plasticity_enabled() const;
 };
 
 // Loads and validates a scene. `overrides` are "key.path=value" strings (CLI --set) applied to
