@@ -16,23 +16,16 @@
 
 namespace {
 
-// Best of `repeats` timings of `steps` symplectic Euler steps with `threads` OpenMP threads:
-// the minimum is the figure least disturbed by other work on the machine.
+// Seconds per symplectic Euler step over `steps` steps with `threads` OpenMP threads.
 double seconds_per_step(fissure::Dynamics& dynamics, const fissure::State& initial, double dt,
-                        int steps, int threads, int repeats) {
+                        int steps, int threads) {
   omp_set_num_threads(threads);
   auto integrator = fissure::make_integrator("symplectic_euler", "bench");
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repeats; ++r) {
-    fissure::State state = initial;
-    integrator->step(dynamics, state, dt);
-    const auto start = std::chrono::steady_clock::now();
-    for (int s = 0; s < steps; ++s) integrator->step(dynamics, state, dt);
-    best = std::min(
-        best,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / steps);
-  }
-  return best;
+  fissure::State state = initial;
+  integrator->step(dynamics, state, dt);
+  const auto start = std::chrono::steady_clock::now();
+  for (int s = 0; s < steps; ++s) integrator->step(dynamics, state, dt);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / steps;
 }
 
 }  // namespace
@@ -61,9 +54,14 @@ int main(int argc, char** argv) {
   const double dt = 0.5 * model->stable_time_step();
   const double bonds = static_cast<double>(scene.families.directed_bonds());
 
-  const int repeats = 3;
-  const double one = seconds_per_step(dynamics, state, dt, steps, 1, repeats);
-  const double two = seconds_per_step(dynamics, state, dt, steps, 2, repeats);
+  // 1 and 2 threads alternate, and each keeps its best time: on a shared machine the minimum
+  // is the figure least disturbed by other work, and alternating exposes both to the same load.
+  const int repeats = 5;
+  double one = std::numeric_limits<double>::infinity(), two = one;
+  for (int r = 0; r < repeats; ++r) {
+    one = std::min(one, seconds_per_step(dynamics, state, dt, steps, 1));
+    two = std::min(two, seconds_per_step(dynamics, state, dt, steps, 2));
+  }
 
   fmt::print("particles {}\n", scene.particles.count());
   fmt::print("directed_bonds {}\n", scene.families.directed_bonds());

@@ -20,8 +20,7 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   bond_omega_.resize(bonds);
   weighted_volume_.resize(n);
   deviatoric_coef_.resize(n);
-  pressure_term_.resize(n);
-  shift_term_.resize(n);
+  terms_.resize(n);
   dilatation_.assign(n, 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -33,6 +32,7 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
     }
     weighted_volume_[i] = m;
     deviatoric_coef_[i] = m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0;
+    terms_[i] = {0.0, deviatoric_coef_[i], 0.0, particles.volume[i]};
   }
   std::vector<double> c(bonds);
   if (surface_correction) {
@@ -90,20 +90,20 @@ void LpsModel::compute_dilatation(const double* y) {
       const int j = nbr[b];
       const double* yj = y + 3 * j;
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-      const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b];  // e_ij
-      theta += c[b] * extension * V[j];
+      const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j];  // e_ij V_j
+      theta += c[b] * extension;
       if constexpr (Plastic)
-        moment += omega[b] * xi[b] * (extension - ep[b]) * V[j];
+        moment += omega[b] * xi[b] * (extension - ep[b] * V[j]);
       else
-        moment += omega[b] * xi[b] * extension * V[j];
+        moment += omega[b] * xi[b] * extension;
     }
     const double B = deviatoric_coef_[i];
     const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;
     // Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p) |ξ| V_j − (θ − θ^p) m/3 (zero without the calibration)
     const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
     dilatation_[i] = theta;
-    pressure_term_[i] = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
-    shift_term_[i] = B * elastic_theta / 3.0;
+    terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
+    terms_[i].shift = B * elastic_theta / 3.0;
   }
 }
 
@@ -120,15 +120,12 @@ void LpsModel::compute_forces(const double* y, double* f) {
   const float* omega = bond_omega_.data();
   const float* c = bond_weight_.data();
   const float* c_reverse = bond_reverse_weight_.data();
-  const double* D = pressure_term_.data();
-  const double* B = deviatoric_coef_.data();
-  const double* S = shift_term_.data();
-  const double* V = particles_.volume.data();
+  const NeighbourTerms* terms = terms_.data();
   const double* ep = plastic_extension_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    const double Di = D[i], Bi = B[i], Si = S[i];
+    const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
     double f0 = 0, f1 = 0, f2 = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
@@ -136,18 +133,20 @@ void LpsModel::compute_forces(const double* y, double* f) {
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const double extension = length - xi[b];
-      double deviatoric = extension * (Bi + B[j]) - xi[b] * (Si + S[j]);
-      if constexpr (Plastic) deviatoric -= Bi * ep[b] + B[j] * ep[reverse[b]];
-      const double t = c[b] * Di + c_reverse[b] * D[j] + omega[b] * deviatoric;
+      const NeighbourTerms& tj = terms[j];
+      double deviatoric = extension * (Bi + tj.deviatoric) - xi[b] * (Si + tj.shift);
+      if constexpr (Plastic) deviatoric -= Bi * ep[b] + tj.deviatoric * ep[reverse[b]];
+      const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;
       // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
-      const double s = length > 0 ? t * V[j] / length : 0.0;
+      const double s = length > 0 ? t * tj.volume / length : 0.0;
       f0 += s * d0;
       f1 += s * d1;
       f2 += s * d2;
     }
-    f[3 * i] = V[i] * f0;
-    f[3 * i + 1] = V[i] * f1;
-    f[3 * i + 2] = V[i] * f2;
+    const double Vi = terms[i].volume;
+    f[3 * i] = Vi * f0;
+    f[3 * i + 1] = Vi * f1;
+    f[3 * i + 2] = Vi * f2;
   }
 }
 

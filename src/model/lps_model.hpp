@@ -39,8 +39,14 @@ class LpsModel final : public Model {
   std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
   std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j
   std::vector<double> deviatoric_coef_;     // B_i = 15μ_i / m_i
-  std::vector<double> pressure_term_;  // D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j, per force call
-  std::vector<double> shift_term_;     // B_i (θ_i − θ^p_i) / 3, per force call
+  // What the force pass gathers from each neighbour, packed so one gather fetches it all.
+  struct NeighbourTerms {
+    double pressure;    // D_j = κθ_j − (B_j/3) Σ_k ω ê |ξ| V_k, per force call
+    double deviatoric;  // B_j
+    double shift;       // B_j (θ_j − θ^p_j) / 3, per force call
+    double volume;      // V_j
+  };
+  std::vector<NeighbourTerms> terms_;
   // Plasticity, allocated only when the scene asks for it (the elastic kernel never reads them).
   bool plastic_ = false;
   std::vector<double> plastic_extension_;    // e^p_ij per bond (Eq 11)
