@@ -23,6 +23,21 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
     horizon_[i] = scene.horizon_of_body[p.body[i]];
     intact_[i] = families_.offsets[i + 1] - families_.offsets[i];
   }
+  if (scene.config.anisotropy_enabled()) {
+    reach_.resize(families_.directed_bonds());
+    for (int i = 0; i < n; ++i) {
+      const auto& G = scene.config.bodies[p.body[i]].material.anisotropy.G;
+      for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
+        double g[3] = {0, 0, 0};
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            g[r] += G[3 * r + c] *
+                    (p.reference[3 * families_.neighbors[b] + c] - p.reference[3 * i + c]);
+        reach_[b] = static_cast<float>(horizon_[i] * families_.reference_length[b] /
+                                       std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+      }
+    }
+  }
   broken_.assign(families_.directed_bonds(), 0);
   exceeded_.assign(families_.directed_bonds(), 0);
   std::size_t removed = 0;
@@ -61,11 +76,13 @@ std::size_t BondBreaking::run(const double* y) {
   const std::vector<double>& plastic = model_.plastic_extension();
   const bool plastic_bonds = !plastic.empty();
   std::size_t exceeded = 0;
-  // s^ω_ij = (1 + αφ_i)(e_ij − e^p_ij)/δ (Eq 19 with Eq 5's ω = δ/|ξ| and s^e = (e − e^p)/|ξ|,
-  // Eq 18), in tension only: a compressed bond never breaks.
+  // s^ω_ij = (1 + αφ_i) s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19): the bond breaks when
+  // e − e^p exceeds s_c ω|ξ| / (1 + αφ_i), with ω|ξ| = δ (Eq 5) or δ|ξ|/|Gξ| (Eq 17). Tension
+  // only: a compressed bond never breaks.
+  const bool anisotropic = !reach_.empty();
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double threshold = critical_stretch_[i] * horizon_[i] / (1.0 + alpha_[i] * damage_[i]);
+    const double scale = critical_stretch_[i] / (1.0 + alpha_[i] * damage_[i]);
     for (int b = off[i]; b < off[i + 1]; ++b) {
       if (broken_[b]) continue;
       const double* yi = y + 3 * i;
@@ -74,7 +91,7 @@ std::size_t BondBreaking::run(const double* y) {
           std::sqrt((yj[0] - yi[0]) * (yj[0] - yi[0]) + (yj[1] - yi[1]) * (yj[1] - yi[1]) +
                     (yj[2] - yi[2]) * (yj[2] - yi[2])) -
           xi[b] - (plastic_bonds ? plastic[b] : 0.0);
-      exceeded_[b] = e > threshold;
+      exceeded_[b] = e > scale * (anisotropic ? reach_[b] : horizon_[i]);
       exceeded += exceeded_[b];
     }
   }

@@ -34,10 +34,11 @@ class BondBreaking {
   std::vector<double> critical_stretch_;  // s_c per particle (infinite: never breaks)
   std::vector<double> alpha_;             // α per particle
   std::vector<double> horizon_;           // δ per particle
-  std::vector<std::uint8_t> broken_;      // per directed bond
-  std::vector<std::uint8_t> exceeded_;    // per directed bond, this step
-  std::vector<int> intact_;               // n_i
-  std::vector<double> damage_;            // φ_i
+  std::vector<float> reach_;  // ω_ij |ξ| = δ|ξ|/|Gξ| per bond; empty if isotropic (= δ)
+  std::vector<std::uint8_t> broken_;    // per directed bond
+  std::vector<std::uint8_t> exceeded_;  // per directed bond, this step
+  std::vector<int> intact_;             // n_i
+  std::vector<double> damage_;          // φ_i
   std::size_t broken_pairs_ = 0;
 };
 

@@ -26,7 +26,9 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   for (int i = 0; i < n; ++i) {
     double m = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      bond_omega_[b] = static_cast<float>(materials_.horizon[i] / xi[b]);  // Eq 5
+      const auto xi_vector = reference_vector(particles, i, nbr[b]);
+      bond_omega_[b] =
+          static_cast<float>(influence(materials_, i, xi_vector.data(), xi[b]));  // Eq 5, 17
       omega[b] = bond_omega_[b];
       m += omega[b] * xi[b] * xi[b] * particles.volume[nbr[b]];  // m_i = Σ ω|ξ|²V_j (notes §6)
     }

@@ -18,6 +18,14 @@ double Model::elastic_energy(const double* y) {
   return total;
 }
 
+double influence(const MaterialPoints& m, int i, const double* xi, double xi_length) {
+  if (m.anisotropy.empty()) return m.horizon[i] / xi_length;  // Eq 5
+  const auto& G = m.anisotropy[i];
+  double g[3];
+  for (int r = 0; r < 3; ++r) g[r] = G[3 * r] * xi[0] + G[3 * r + 1] * xi[1] + G[3 * r + 2] * xi[2];
+  return m.horizon[i] / std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);  // Eq 17
+}
+
 std::unique_ptr<Model> make_model(const Scene& scene) {
   const Particles& particles = scene.particles;
   MaterialPoints m;
@@ -33,6 +41,11 @@ std::unique_ptr<Model> make_model(const Scene& scene) {
     m.shear_modulus[i] = material.shear_modulus;
     m.density[i] = material.density;
     m.horizon[i] = scene.horizon_of_body[b];
+  }
+  if (scene.config.anisotropy_enabled()) {
+    m.anisotropy.resize(n);
+    for (int i = 0; i < n; ++i)
+      m.anisotropy[i] = scene.config.bodies[particles.body[i]].material.anisotropy.G;
   }
   if (scene.config.bodies.front().material.model == ModelVariant::paper)
     return std::make_unique<PaperModel>(particles, scene.families, std::move(m));

@@ -1,6 +1,8 @@
 #pragma once
 // The constitutive model: internal forces, energies and the stable explicit step, for positions
 // y. It knows nothing of time stepping.
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -18,7 +20,18 @@ struct MaterialPoints {
   std::vector<double> shear_modulus;  // μ
   std::vector<double> density;        // ρ
   std::vector<double> horizon;        // δ [m]
+  // G per particle, row major (Eq 17); empty when every body is isotropic.
+  std::vector<std::array<double, 9>> anisotropy;
 };
+
+// ξ = x_j − x_i.
+inline std::array<double, 3> reference_vector(const Particles& p, int i, int j) {
+  return {p.reference[3 * j] - p.reference[3 * i], p.reference[3 * j + 1] - p.reference[3 * i + 1],
+          p.reference[3 * j + 2] - p.reference[3 * i + 2]};
+}
+
+// The influence function ω_ij = δ / |G ξ| (Eq 17), or δ / |ξ| without G (Eq 5).
+double influence(const MaterialPoints& m, int i, const double* xi_vector, double xi_length);
 
 // Per-particle plasticity constants (paper §4.2), expanded from the bodies.
 struct PlasticPoints {

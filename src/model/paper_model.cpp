@@ -46,7 +46,9 @@ PaperModel::PaperModel(const Particles& particles, const Families& families,
   omega_.resize(families.directed_bonds());
   for (int i = 0; i < particles.count(); ++i)
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
-      omega_[b] = materials_.horizon[i] / families.reference_length[b];  // Eq 5
+      omega_[b] =
+          influence(materials_, i, reference_vector(particles, i, families.neighbors[b]).data(),
+                    families.reference_length[b]);  // Eq 5, 17
   dilatation_.assign(particles.count(), 0.0);
   a_.resize(particles.count());
   b_.resize(particles.count());

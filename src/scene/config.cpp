@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,6 +21,12 @@ bool Config::fracture_enabled() const {
 bool Config::plasticity_enabled() const {
   for (const Body& b : bodies)
     if (b.material.plasticity.enabled) return true;
+  return false;
+}
+
+bool Config::anisotropy_enabled() const {
+  for (const Body& b : bodies)
+    if (b.material.anisotropy.enabled) return true;
   return false;
 }
 
@@ -158,10 +165,40 @@ PlasticitySettings read_plasticity(const YamlReader& r, const YAML::Node& node,
   return p;
 }
 
+AnisotropySettings read_anisotropy(const YamlReader& r, const YAML::Node& node,
+                                   const std::string& path) {
+  r.check_keys(node, path, {"G", "direction", "ratio"});
+  AnisotropySettings a;
+  a.enabled = true;
+  if (const auto g = node["G"]) {
+    if (node["direction"] || node["ratio"]) r.fail(path, "give either G or direction and ratio");
+    const std::string p = join(path, "G");
+    if (!g.IsSequence() || g.size() != 3) r.fail(p, "expected a 3×3 matrix [[..], [..], [..]]");
+    for (std::size_t row = 0; row < 3; ++row) {
+      const auto values = r.vec3(g[row], fmt::format("{}[{}]", p, row));
+      for (std::size_t col = 0; col < 3; ++col) a.G[3 * row + col] = values[col];
+    }
+  } else {
+    // G = I + (r − 1) d dᵀ: bonds along d weigh 1/r as much (Eq 17).
+    const Vec3 d = r.vec3(node["direction"], join(path, "direction"));
+    const double ratio = r.positive(node["ratio"], join(path, "ratio"));
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (length == 0) r.fail(join(path, "direction"), "must not be zero");
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col)
+        a.G[3 * row + col] = (row == col) + (ratio - 1) * d[row] * d[col] / (length * length);
+  }
+  const auto& G = a.G;
+  const double det = G[0] * (G[4] * G[8] - G[5] * G[7]) - G[1] * (G[3] * G[8] - G[5] * G[6]) +
+                     G[2] * (G[3] * G[7] - G[4] * G[6]);
+  if (!(std::abs(det) > 1e-12)) r.fail(path, "G must be invertible");
+  return a;
+}
+
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
   r.check_keys(node, path,
                {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction",
-                "fracture", "plasticity"});
+                "fracture", "plasticity", "anisotropy"});
   Material m;
   if (node["model"]) {
     const std::string model = r.string(node["model"], join(path, "model"));
@@ -178,6 +215,8 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
   if (node["surface_correction"])
     m.surface_correction = r.boolean(node["surface_correction"], join(path, "surface_correction"));
   if (node["fracture"]) m.fracture = read_fracture(r, node["fracture"], join(path, "fracture"));
+  if (node["anisotropy"])
+    m.anisotropy = read_anisotropy(r, node["anisotropy"], join(path, "anisotropy"));
   if (node["plasticity"]) {
     m.plasticity = read_plasticity(r, node["plasticity"], join(path, "plasticity"));
     if (m.model != ModelVariant::lps)

@@ -45,6 +45,12 @@ struct PlasticitySettings {
   double max_plastic_stretch = std::numeric_limits<double>::infinity();  // γ/|ξ|, Table 1
 };
 
+// Anisotropy (paper §4.3): ω_ij = δ / |G ξ| (Eq 17) with G the same for every particle of a body.
+struct AnisotropySettings {
+  bool enabled = false;
+  std::array<double, 9> G{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row major
+};
+
 struct Material {
   ModelVariant model = ModelVariant::lps;
   double density = 0;
@@ -53,6 +59,7 @@ struct Material {
   bool surface_correction = true;  // lps only: calibrated dilatation weights (docs/model.md)
   FractureSettings fracture;
   PlasticitySettings plasticity;
+  AnisotropySettings anisotropy;
 };
 
 struct Body {
@@ -116,6 +123,7 @@ struct Config {
 
   bool fracture_enabled() const;
   bool plasticity_enabled() const;
+  bool anisotropy_enabled() const;
 };
 
 // Loads and validates a scene. `overrides` are "key.path=value" strings (CLI --set) applied to
