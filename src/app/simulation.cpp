@@ -190,6 +190,7 @@ RunSummary Simulation::run() {
     // The last step is shortened to land on time.end.
     const double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
     integrator_->step(*dynamics_, state_, h);
+    dynamics_->end_step(h);
     if (post_step_->run(state_.position.data())) integrator_->bonds_changed();
     constraint_work_ += dt * dynamics_->constraint_power();
     if (config_.damping > 0)

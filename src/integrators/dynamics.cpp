@@ -20,6 +20,11 @@ Dynamics::Dynamics(const Scene& scene, Model& model)
     held_offsets_.push_back(static_cast<int>(held_by_.size()));
   }
   force_.resize(3 * mass_.size());
+  if (!scene.config.colliders.empty()) colliders_ = std::make_unique<Colliders>(scene);
+}
+
+void Dynamics::end_step(double h) {
+  if (colliders_) colliders_->advance(h);
 }
 
 int Dynamics::active_constraint(std::size_t k, double t) const {
@@ -30,6 +35,7 @@ int Dynamics::active_constraint(std::size_t k, double t) const {
 
 void Dynamics::acceleration(double t, const double* y, const double* v, double* a) {
   model_.forces(y, force_.data());
+  if (colliders_) colliders_->add_forces(y, v, force_.data());
   const int n = particle_count();
   const double c = damping_;
 #pragma omp parallel for schedule(static)

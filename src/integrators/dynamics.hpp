@@ -1,8 +1,10 @@
 #pragma once
 // The equation of motion the integrators advance: M ÿ = F_int(y) + M g − c M ẏ (Eq 2 with
 // gravity and mass-proportional damping), with kinematic constraints on regions.
+#include <memory>
 #include <vector>
 
+#include "contact/colliders.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -21,6 +23,10 @@ class Dynamics {
   void acceleration(double t, const double* y, const double* v, double* a);
   // Sets the velocity of every particle held by a constraint active at time t.
   void constrain_velocity(double t, double* v) const;
+  // Ends a completed step of size h: moves the colliders.
+  void end_step(double h);
+  // The colliders, or nullptr when the scene has none.
+  const Colliders* colliders() const { return colliders_.get(); }
   // Power of the constraint reactions at the last acceleration() call [W].
   double constraint_power() const { return constraint_power_; }
 
@@ -38,6 +44,7 @@ class Dynamics {
   std::vector<int> held_offsets_;    // CSR: constraints holding each of held_particles_
   std::vector<int> held_by_;
   std::vector<double> force_;
+  std::unique_ptr<Colliders> colliders_;
   double constraint_power_ = 0;
 };
 

@@ -195,6 +195,51 @@ AnisotropySettings read_anisotropy(const YamlReader& r, const YAML::Node& node,
   return a;
 }
 
+Collider read_collider(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  r.check_keys(node, path, {"sphere", "plane", "box", "velocity", "mass"});
+  const int shapes = static_cast<bool>(node["sphere"]) + static_cast<bool>(node["plane"]) +
+                     static_cast<bool>(node["box"]);
+  if (shapes != 1) r.fail(path, "give exactly one of sphere, plane, box");
+  Collider c;
+  if (const auto n = node["sphere"]) {
+    const std::string p = join(path, "sphere");
+    r.check_keys(n, p, {"center", "radius"});
+    c.kind = Collider::Kind::sphere;
+    c.center = r.vec3(n["center"], join(p, "center"));
+    c.radius = r.positive(n["radius"], join(p, "radius"));
+  } else if (const auto n = node["plane"]) {
+    const std::string p = join(path, "plane");
+    r.check_keys(n, p, {"point", "normal"});
+    c.kind = Collider::Kind::plane;
+    c.point = r.vec3(n["point"], join(p, "point"));
+    c.normal = r.vec3(n["normal"], join(p, "normal"));
+    const double length = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] +
+                                    c.normal[2] * c.normal[2]);
+    if (length == 0) r.fail(join(p, "normal"), "must not be zero");
+    for (double& v : c.normal) v /= length;
+  } else {
+    const std::string p = join(path, "box");
+    r.check_keys(node["box"], p, {"min", "max"});
+    c.kind = Collider::Kind::box;
+    c.min = r.vec3(node["box"]["min"], join(p, "min"));
+    c.max = r.vec3(node["box"]["max"], join(p, "max"));
+    check_box(r, c.min, c.max, p);
+  }
+  if (node["velocity"]) {
+    if (c.kind == Collider::Kind::plane) r.fail(join(path, "velocity"), "a plane does not move");
+    c.velocity = r.vec3(node["velocity"], join(path, "velocity"));
+  }
+  if (const auto m = node["mass"]) {
+    if (c.kind != Collider::Kind::sphere)
+      r.fail(join(path, "mass"), "only a sphere can be dynamic");
+    if (!(m.IsScalar() && m.Scalar() == "kinematic")) {
+      c.kinematic = false;
+      c.mass = r.positive(m, join(path, "mass"));
+    }
+  }
+  return c;
+}
+
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
   r.check_keys(node, path,
                {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction",
@@ -270,7 +315,7 @@ TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
 Config read_config(const YamlReader& r, const YAML::Node& root) {
   r.check_keys(root, "",
                {"name", "time", "integrator", "gravity", "bodies", "constraints", "initial_cracks",
-                "damping", "probes", "output"});
+                "colliders", "contact", "damping", "probes", "output"});
   Config c;
   c.file = r.file();
   c.name = root["name"] ? r.string(root["name"], "name")
@@ -302,6 +347,16 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     if (!n.IsSequence()) r.fail("initial_cracks", "expected a list");
     for (std::size_t i = 0; i < n.size(); ++i)
       c.initial_cracks.push_back(read_crack(r, n[i], indexed("initial_cracks", i)));
+  }
+  if (const auto n = root["colliders"]) {
+    if (!n.IsSequence()) r.fail("colliders", "expected a list");
+    for (std::size_t i = 0; i < n.size(); ++i)
+      c.colliders.push_back(read_collider(r, n[i], indexed("colliders", i)));
+  }
+  if (const auto n = root["contact"]) {
+    r.check_keys(n, "contact", {"stiffness", "friction"});
+    if (n["stiffness"]) c.contact.stiffness = r.positive(n["stiffness"], "contact.stiffness");
+    if (n["friction"]) c.contact.friction = r.non_negative(n["friction"], "contact.friction");
   }
   if (root["damping"]) c.damping = r.non_negative(root["damping"], "damping");
   if (const auto n = root["probes"]) {

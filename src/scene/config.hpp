@@ -86,6 +86,24 @@ struct Crack {
   Region region;           // plane bound, or the box itself
 };
 
+// A rigid obstacle the particles collide with (penalty contact with friction).
+struct Collider {
+  enum class Kind { sphere, plane, box } kind = Kind::sphere;
+  Vec3 center{};      // sphere
+  double radius = 0;  // sphere
+  Vec3 point{};       // plane
+  Vec3 normal{};      // plane, unit, pointing to the free side
+  Vec3 min{}, max{};  // box
+  Vec3 velocity{};    // sphere, box: constant (kinematic) or initial (dynamic) velocity
+  bool kinematic = true;
+  double mass = 0;  // dynamic sphere
+};
+
+struct ContactSettings {
+  double stiffness = 1.0;  // penalty factor: k_i = stiffness × κ_i × V_i^(1/3)
+  double friction = 0.0;   // Coulomb coefficient
+};
+
 struct Probe {
   std::string name;
   Region region;
@@ -117,6 +135,8 @@ struct Config {
   std::vector<Body> bodies;
   std::vector<Constraint> constraints;
   std::vector<Crack> initial_cracks;
+  std::vector<Collider> colliders;
+  ContactSettings contact;
   double damping = 0;  // mass-proportional damping coefficient [1/s]
   std::vector<Probe> probes;
   OutputSettings output;

@@ -1,0 +1,39 @@
+#pragma once
+// Rigid colliders (spheres, planes, boxes) pushing on the particles with a penalty force and
+// regularised Coulomb friction. A dynamic sphere moves under the particles' reaction and gravity.
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace fissure {
+
+class Colliders {
+ public:
+  explicit Colliders(const Scene& scene);
+  // Adds the contact force on every particle to f (3N) and records each collider's reaction.
+  void add_forces(const double* y, const double* v, double* f);
+  // Moves the colliders by one step h: kinematic ones at their velocity, dynamic spheres by
+  // semi-implicit Euler under the reaction of the last add_forces and gravity.
+  void advance(double h);
+  // Momentum of the dynamic colliders (for balances) and a collider's current position.
+  std::array<double, 3> momentum() const;
+  const std::array<double, 3>& position(std::size_t c) const { return state_[c].position; }
+
+ private:
+  struct State {
+    Collider shape;
+    std::array<double, 3> position;  // sphere centre, plane point, or box offset from its min
+    std::array<double, 3> velocity;
+    std::array<double, 3> reaction;  // force the particles exert on it, last add_forces
+  };
+  // Penetration depth and outward normal of a point against collider c (depth ≤ 0: apart).
+  double penetration(const State& c, const double* y, double radius, double* normal) const;
+
+  std::vector<State> state_;
+  std::vector<double> radius_;     // contact radius per particle: ½ V^(1/3)
+  std::vector<double> stiffness_;  // penalty stiffness per particle [N/m]
+  double friction_;
+  std::array<double, 3> gravity_;
+};
+
+}  // namespace fissure
