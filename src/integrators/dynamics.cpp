@@ -21,6 +21,7 @@ Dynamics::Dynamics(const Scene& scene, Model& model)
   }
   force_.resize(3 * mass_.size());
   if (!scene.config.colliders.empty()) colliders_ = std::make_unique<Colliders>(scene);
+  if (scene.config.contact.self) self_contact_ = std::make_unique<SelfContact>(scene, model);
 }
 
 void Dynamics::end_step(double h) {
@@ -36,6 +37,7 @@ int Dynamics::active_constraint(std::size_t k, double t) const {
 void Dynamics::acceleration(double t, const double* y, const double* v, double* a) {
   model_.forces(y, force_.data());
   if (colliders_) colliders_->add_forces(y, v, force_.data());
+  if (self_contact_) self_contact_->add_forces(y, force_.data());
   const int n = particle_count();
   const double c = damping_;
 #pragma omp parallel for schedule(static)

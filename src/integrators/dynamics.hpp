@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contact/colliders.hpp"
+#include "contact/self_contact.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -45,6 +46,7 @@ class Dynamics {
   std::vector<int> held_by_;
   std::vector<double> force_;
   std::unique_ptr<Colliders> colliders_;
+  std::unique_ptr<SelfContact> self_contact_;
   double constraint_power_ = 0;
 };
 

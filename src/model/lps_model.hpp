@@ -20,6 +20,7 @@ class LpsModel final : public Model {
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
   void break_bond(std::size_t b) override;
+  bool bond_intact(std::size_t b) const override { return bond_omega_[b] != 0; }
   bool plastic() const override { return plastic_; }
   std::size_t update_plasticity(const double* y) override;
   const std::vector<double>& plastic_extension() const override { return plastic_extension_; }

@@ -60,6 +60,8 @@ class Model {
   // Removes bond b of its row for good (fracture): it carries no force and stores no energy.
   // The same bond in the other row (Families::reverse) is removed by its own call.
   virtual void break_bond(std::size_t b) = 0;
+  // False once bond b has been broken.
+  virtual bool bond_intact(std::size_t b) const = 0;
   // Plasticity (paper §4.2): whether this model carries plastic extensions, the return map run
   // by the post-step after a completed step (returns how many bonds yielded), and e^p per bond.
   virtual bool plastic() const { return false; }

@@ -18,6 +18,7 @@ class PaperModel final : public Model {
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
   void break_bond(std::size_t b) override;
+  bool bond_intact(std::size_t b) const override { return omega_[b] != 0; }
 
  private:
   std::vector<double> omega_;  // ω_ij = δ/|ξ| (Eq 5)

@@ -354,7 +354,8 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
       c.colliders.push_back(read_collider(r, n[i], indexed("colliders", i)));
   }
   if (const auto n = root["contact"]) {
-    r.check_keys(n, "contact", {"stiffness", "friction"});
+    r.check_keys(n, "contact", {"stiffness", "friction", "self"});
+    if (n["self"]) c.contact.self = r.boolean(n["self"], "contact.self");
     if (n["stiffness"]) c.contact.stiffness = r.positive(n["stiffness"], "contact.stiffness");
     if (n["friction"]) c.contact.friction = r.non_negative(n["friction"], "contact.friction");
   }

@@ -102,6 +102,7 @@ struct Collider {
 struct ContactSettings {
   double stiffness = 1.0;  // penalty factor: k_i = stiffness × κ_i × V_i^(1/3)
   double friction = 0.0;   // Coulomb coefficient
+  bool self = false;       // repulsion between particles that are not bonded
 };
 
 struct Probe {

@@ -105,5 +105,56 @@ TEST(Colliders, DynamicSphereExchangesMomentumWithBlock) {
   EXPECT_LT(block, -0.1);  // pushed down by a good part of the sphere's 1 kg m/s
 }
 
+// Two blocks flying at each other at 1 m/s each: with contact.self they bounce apart without
+// passing through each other (no particle of one ends beyond the other's near face), and total
+// momentum stays zero to round-off (the repulsion is pairwise, equal and opposite). Without it
+// they pass into each other.
+TEST(SelfContact, SeparateBodiesCollideInsteadOfPassingThrough) {
+  for (const bool self : {true, false}) {
+    auto run = start(fmt::format(
+        "time: {{end: 1.0}}\ncontact: {{self: {}}}\nbodies:\n"
+        "  - geometry: {{box: {{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}}}\n    resolution: 0.025\n"
+        "    material: {{density: 1000, bulk_modulus: 1.0e6, shear_modulus: 1.0e6}}\n"
+        "    velocity: [1, 0, 0]\n"
+        "  - geometry: {{box: {{min: [0.11, 0, 0], max: [0.21, 0.1, 0.1]}}}}\n    resolution: "
+        "0.025\n"
+        "    material: {{density: 1000, bulk_modulus: 1.0e6, shear_modulus: 1.0e6}}\n"
+        "    velocity: [-1, 0, 0]\n",
+        self));
+    const double dt = 0.5 * run->model->stable_time_step();
+    const Particles& p = run->scene.particles;
+    // Largest overlap of the two bodies along x over the run: the rightmost particle centre of
+    // the left block minus the leftmost of the right block (negative while apart).
+    double overlap = -1;
+    while (run->state.time < 0.04) {
+      advance(*run, dt, run->state.time + dt);
+      double right_of_left = -1e9, left_of_right = 1e9;
+      for (int i = 0; i < p.count(); ++i) {
+        const double x = run->state.position[3 * i];
+        if (p.body[i] == 0) right_of_left = std::max(right_of_left, x);
+        if (p.body[i] == 1) left_of_right = std::min(left_of_right, x);
+      }
+      overlap = std::max(overlap, right_of_left - left_of_right);
+    }
+    double momentum = 0, scale = 0, left_momentum = 0;
+    for (int i = 0; i < p.count(); ++i) {
+      momentum += p.mass[i] * run->state.velocity[3 * i];
+      scale += p.mass[i];
+      if (p.body[i] == 0) left_momentum += p.mass[i] * run->state.velocity[3 * i];
+    }
+    std::printf(
+        "contact.self %d: x momentum %.3e kg m/s, largest overlap %.4f m, left block "
+        "momentum %.4f kg m/s\n",
+        self, momentum, overlap, left_momentum);
+    if (self) {
+      EXPECT_NEAR(momentum, 0.0, 1e-10 * scale);
+      EXPECT_LT(overlap, 0.0);        // never interpenetrated
+      EXPECT_LT(left_momentum, 0.0);  // bounced back
+    } else {
+      EXPECT_GT(overlap, 0.01);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fissure
