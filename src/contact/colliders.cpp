@@ -61,7 +61,11 @@ double Colliders::penetration(const State& c, const double* y, double radius, do
     distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   }
   const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (length == 0) return 0.0;
+  if (length == 0) {  // at a sphere's centre: as deep as it gets, pushed out along z
+    n[0] = n[1] = 0;
+    n[2] = 1;
+    return radius - distance;
+  }
   for (int k = 0; k < 3; ++k) n[k] = d[k] / length;
   return radius - distance;
 }

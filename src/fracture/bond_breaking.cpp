@@ -40,20 +40,21 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
   }
   broken_.assign(families_.directed_bonds(), 0);
   exceeded_.assign(families_.directed_bonds(), 0);
+  // Each pair is tested once, from its lower index, and removed from both rows together.
   std::size_t removed = 0;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < n; ++i)
     for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
-      const double* xi = &p.reference[3 * i];
-      const double* xj = &p.reference[3 * families_.neighbors[b]];
+      const int j = families_.neighbors[b];
+      if (j < i) continue;
       for (const Crack& crack : scene.config.initial_cracks)
-        if (crosses(crack, xi, xj)) {
+        if (crosses(crack, &p.reference[3 * i], &p.reference[3 * j])) {
           remove(i, b);
-          ++removed;
+          remove(j, families_.reverse[b]);
+          removed += 2;
           break;
         }
     }
-    update_damage(i);
-  }
+  for (int i = 0; i < n; ++i) update_damage(i);
   broken_pairs_ = removed / 2;
 }
 

@@ -87,13 +87,14 @@ void LpsModel::compute_dilatation(const double* y) {
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    double theta = 0, moment = 0;
+    double theta = 0, moment = 0, intact_volume = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       const double* yj = y + 3 * j;
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j];  // e_ij V_j
       theta += c[b] * extension;
+      intact_volume += omega[b] * xi[b] * xi[b] * V[j];  // m_i over the bonds not broken
       if constexpr (Plastic)
         moment += omega[b] * xi[b] * (extension - ep[b] * V[j]);
       else
@@ -101,8 +102,9 @@ void LpsModel::compute_dilatation(const double* y) {
     }
     const double B = deviatoric_coef_[i];
     const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;
-    // Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p) |ξ| V_j − (θ − θ^p) m/3 (zero without the calibration)
-    const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
+    // Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p) |ξ| V_j − (θ − θ^p) m/3, with m over the intact bonds
+    // (zero for an intact family without the calibration)
+    const double deviatoric_moment = moment - elastic_theta * intact_volume / 3.0;
     dilatation_[i] = theta;
     terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
     terms_[i].shift = B * elastic_theta / 3.0;
