@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/contact_particles.hpp"
+
 namespace fissure {
 
 namespace {
@@ -22,15 +24,9 @@ Colliders::Colliders(const Scene& scene)
     if (c.kind == Collider::Kind::plane) s.position = {c.point[0], c.point[1], c.point[2]};
     state_.push_back(s);
   }
-  const Particles& p = scene.particles;
-  radius_.resize(p.count());
-  stiffness_.resize(p.count());
-  for (int i = 0; i < p.count(); ++i) {
-    const double size = std::cbrt(p.volume[i]);
-    radius_[i] = 0.5 * size;
-    stiffness_[i] = scene.config.contact.stiffness *
-                    scene.config.bodies[p.body[i]].material.bulk_modulus * size;
-  }
+  auto particles = contact_particles(scene);
+  radius_ = std::move(particles.radius);
+  stiffness_ = std::move(particles.stiffness);
 }
 
 double Colliders::penetration(const State& c, const double* y, double radius, double* n) const {

@@ -3,20 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/contact_particles.hpp"
+
 namespace fissure {
 
 SelfContact::SelfContact(const Scene& scene, const Model& model)
     : families_(scene.families), model_(model) {
-  const Particles& p = scene.particles;
-  radius_.resize(p.count());
-  stiffness_.resize(p.count());
-  for (int i = 0; i < p.count(); ++i) {
-    const double size = std::cbrt(p.volume[i]);
-    radius_[i] = 0.5 * size;
-    stiffness_[i] = scene.config.contact.stiffness *
-                    scene.config.bodies[p.body[i]].material.bulk_modulus * size;
-    cell_ = std::max(cell_, 2 * radius_[i]);
-  }
+  auto particles = contact_particles(scene);
+  radius_ = std::move(particles.radius);
+  stiffness_ = std::move(particles.stiffness);
+  for (double r : radius_) cell_ = std::max(cell_, 2 * r);
 }
 
 void SelfContact::build_grid(const double* y) {

@@ -7,6 +7,7 @@
 #include "app/energy.hpp"
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
+#include "support/gradient_check.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -78,21 +79,7 @@ INSTANTIATE_TEST_SUITE_P(Models, Conservation, ::testing::Values("lps", "paper")
 TEST(Conservation, LpsForceIsNegativeEnergyGradient) {
   const Scene scene = test::block_scene(0.08, 0.02, 2e6, 1e6);
   auto model = make_model(scene);
-  auto y = perturbed(scene.particles, 2e-4, 2);
-  std::vector<double> f(y.size());
-  model->forces(y.data(), f.data());
-  const double h = 1e-7;
-  const double scale = max_norm(f);
-  for (int probe = 0; probe < 12; ++probe) {
-    const std::size_t k = (probe * 7919) % y.size();
-    const double saved = y[k];
-    y[k] = saved + h;
-    const double up = model->elastic_energy(y.data());
-    y[k] = saved - h;
-    const double down = model->elastic_energy(y.data());
-    y[k] = saved;
-    EXPECT_NEAR(-(up - down) / (2 * h), f[k], 1e-6 * scale) << "component " << k;
-  }
+  test::expect_force_is_energy_gradient(*model, perturbed(scene.particles, 2e-4, 2));
 }
 
 // 1,000 free steps conserve linear and angular momentum to round-off: both explicit schemes

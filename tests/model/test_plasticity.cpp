@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "model/model.hpp"
+#include "support/gradient_check.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -120,21 +121,7 @@ TEST(Plasticity, ForceIsNegativeEnergyGradientWithPlasticExtensions) {
   auto y = sheared(scene.particles, 0.05);
   ASSERT_GT(model->update_plasticity(y.data()), 0u);
   for (std::size_t k = 0; k < y.size(); ++k) y[k] += 1e-4 * std::sin(1.3 * k);
-  std::vector<double> f(y.size());
-  model->forces(y.data(), f.data());
-  double scale = 0;
-  for (double v : f) scale = std::max(scale, std::abs(v));
-  const double h = 1e-7;
-  for (int probe = 0; probe < 12; ++probe) {
-    const std::size_t k = (probe * 7919) % y.size();
-    const double saved = y[k];
-    y[k] = saved + h;
-    const double up = model->elastic_energy(y.data());
-    y[k] = saved - h;
-    const double down = model->elastic_energy(y.data());
-    y[k] = saved;
-    EXPECT_NEAR(-(up - down) / (2 * h), f[k], 1e-6 * scale) << "component " << k;
-  }
+  test::expect_force_is_energy_gradient(*model, y);
 }
 
 // γ caps the plastic extension at max_plastic_stretch × |ξ| (Eq 16, Table 1's γ/|ξ| column).
