@@ -70,7 +70,8 @@ if [[ ! -x $fissure_bin ]]; then
   echo "!!! Build it first (e.g. cmake --build $build_dir --target bench_elastic_step)."
   echo "!!! Continuing with the LAMMPS part only."
 else
-  if "$fissure_bin" | tee "$fissure_out"; then
+  # Pinned threads: unpinned, the OS migrates them and the 2-thread figure swings by ±15%.
+  if OMP_PROC_BIND=${OMP_PROC_BIND:-true} "$fissure_bin" | tee "$fissure_out"; then
     :
   else
     rc=$?
