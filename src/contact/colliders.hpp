@@ -15,9 +15,8 @@ class Colliders {
   // Moves the colliders by one step h: kinematic ones at their velocity, dynamic spheres by
   // semi-implicit Euler under the reaction of the last add_forces and gravity.
   void advance(double h);
-  // Momentum of the dynamic colliders (for balances) and a collider's current position.
+  // Momentum of the dynamic colliders, for balances.
   std::array<double, 3> momentum() const;
-  const std::array<double, 3>& position(std::size_t c) const { return state_[c].position; }
 
  private:
   struct State {

@@ -60,7 +60,7 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
 
 void BondBreaking::remove(int i, int b) {
   broken_[b] = 1;
-  model_.break_bond(b);
+  model_.break_bond(i, b);
   --intact_[i];
 }
 

@@ -8,7 +8,7 @@ PostStep::PostStep(const Scene& scene, Model& model) : model_(model) {
 }
 
 bool PostStep::run(const double* y) {
-  yielded_ = model_.plastic() ? model_.update_plasticity(y) : 0;
+  model_.update_plasticity(y);
   return bond_breaking_ && bond_breaking_->run(y) > 0;
 }
 

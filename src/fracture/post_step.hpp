@@ -18,13 +18,10 @@ class PostStep {
   // φ per particle, or nullptr without fracture.
   const std::vector<double>* damage() const;
   std::size_t broken_bonds() const;
-  // Bonds that yielded in the last call.
-  std::size_t yielded_bonds() const { return yielded_; }
 
  private:
   Model& model_;
   std::unique_ptr<BondBreaking> bond_breaking_;
-  std::size_t yielded_ = 0;
 };
 
 }  // namespace fissure

@@ -38,7 +38,7 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
   model_.forces(y, force_.data());
   if (colliders_) colliders_->add_forces(y, v, force_.data());
   if (self_contact_) self_contact_->add_forces(y, force_.data());
-  const int n = particle_count();
+  const int n = static_cast<int>(mass_.size());
   const double c = damping_;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {

@@ -15,10 +15,6 @@ class Dynamics {
  public:
   Dynamics(const Scene& scene, Model& model);
 
-  int particle_count() const { return static_cast<int>(mass_.size()); }
-  Model& model() { return model_; }
-  const std::vector<double>& mass() const { return mass_; }
-
   // a = F_int(y)/m + g − c v, zero where a constraint holds the particle at time t.
   // Also records the power the constraints put in (constraint_power()).
   void acceleration(double t, const double* y, const double* v, double* a);

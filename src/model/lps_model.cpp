@@ -19,7 +19,6 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   std::vector<double> omega(bonds);
   bond_omega_.resize(bonds);
   weighted_volume_.resize(n);
-  deviatoric_coef_.resize(n);
   terms_.resize(n);
   dilatation_.assign(n, 0.0);
 #pragma omp parallel for schedule(static)
@@ -33,8 +32,9 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
       m += omega[b] * xi[b] * xi[b] * particles.volume[nbr[b]];  // m_i = Σ ω|ξ|²V_j (notes §6)
     }
     weighted_volume_[i] = m;
-    deviatoric_coef_[i] = m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0;
-    terms_[i] = {0.0, deviatoric_coef_[i], 0.0, particles.volume[i]};
+    // B_i = 15μ_i/m_i, with m_i of the whole family: breaking bonds does not change it.
+    terms_[i] = {0.0, m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0, 0.0,
+                 particles.volume[i]};
   }
   std::vector<double> c(bonds);
   if (surface_correction) {
@@ -87,24 +87,23 @@ void LpsModel::compute_dilatation(const double* y) {
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    double theta = 0, moment = 0, intact_volume = 0;
+    double theta = 0, moment = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       const double* yj = y + 3 * j;
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j];  // e_ij V_j
       theta += c[b] * extension;
-      intact_volume += omega[b] * xi[b] * xi[b] * V[j];  // m_i over the bonds not broken
       if constexpr (Plastic)
         moment += omega[b] * xi[b] * (extension - ep[b] * V[j]);
       else
         moment += omega[b] * xi[b] * extension;
     }
-    const double B = deviatoric_coef_[i];
+    const double B = terms_[i].deviatoric;
     const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;
     // Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p) |ξ| V_j − (θ − θ^p) m/3, with m over the intact bonds
     // (zero for an intact family without the calibration)
-    const double deviatoric_moment = moment - elastic_theta * intact_volume / 3.0;
+    const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
     dilatation_[i] = theta;
     terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
     terms_[i].shift = B * elastic_theta / 3.0;
@@ -189,7 +188,7 @@ void LpsModel::energy_density(const double* y, double* w) {
       const double deviatoric = deviatoric_extension(y, i, b);
       sum += bond_omega_[b] * particles_.volume[nbr[b]] * deviatoric * deviatoric;
     }
-    w[i] = 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * deviatoric_coef_[i] * sum;
+    w[i] = 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * terms_[i].deviatoric * sum;
   }
 }
 
@@ -205,7 +204,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
   std::size_t yielded = 0;
 #pragma omp parallel for reduction(+ : yielded) schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double B = deviatoric_coef_[i];
+    const double B = terms_[i].deviatoric;
     double plastic_theta = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const double stiffness = 2.0 * bond_omega_[b] * B;  // 4ωb
@@ -228,17 +227,16 @@ std::size_t LpsModel::update_plasticity(const double* y) {
 
 double LpsModel::stable_time_step() const {
   const int n = particles_.count();
-  const std::size_t bonds = families_.directed_bonds();
-  std::vector<double> b(n), unit(n, 1.0), omega(bonds), c(bonds);
-  for (int i = 0; i < n; ++i) b[i] = 0.5 * deviatoric_coef_[i];  // b_i = 15μ/(2m_i)
-  for (std::size_t k = 0; k < bonds; ++k) {
-    omega[k] = bond_omega_[k];
-    c[k] = std::abs(bond_weight_[k]);  // |c_ij| keeps the Cauchy–Schwarz bound valid
-  }
-  return gershgorin_time_step(particles_, families_, materials_, {b, omega, unit, c});
+  std::vector<double> b(n);
+  for (int i = 0; i < n; ++i) b[i] = 0.5 * terms_[i].deviatoric;  // b_i = 15μ/(2m_i)
+  const std::vector<double> omega(bond_omega_.begin(), bond_omega_.end());
+  const std::vector<double> c(bond_weight_.begin(), bond_weight_.end());
+  return gershgorin_time_step(particles_, families_, materials_, {b, omega, c});
 }
 
-void LpsModel::break_bond(std::size_t b) {
+void LpsModel::break_bond(int i, std::size_t b) {
+  const double xi = families_.reference_length[b];
+  weighted_volume_[i] -= bond_omega_[b] * xi * xi * particles_.volume[families_.neighbors[b]];
   bond_omega_[b] = 0;
   bond_weight_[b] = 0;
   bond_reverse_weight_[b] = 0;

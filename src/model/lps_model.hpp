@@ -19,7 +19,7 @@ class LpsModel final : public Model {
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
-  void break_bond(std::size_t b) override;
+  void break_bond(int i, std::size_t b) override;
   bool bond_intact(std::size_t b) const override { return bond_omega_[b] != 0; }
   bool plastic() const override { return plastic_; }
   std::size_t update_plasticity(const double* y) override;
@@ -38,8 +38,7 @@ class LpsModel final : public Model {
   std::vector<float> bond_omega_;           // ω_ij (Eq 5)
   std::vector<float> bond_weight_;          // c_ij
   std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
-  std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j
-  std::vector<double> deviatoric_coef_;     // B_i = 15μ_i / m_i
+  std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j over the intact bonds
   // What the force pass gathers from each neighbour, packed so one gather fetches it all.
   struct NeighbourTerms {
     double pressure;    // D_j = κθ_j − (B_j/3) Σ_k ω ê |ξ| V_k, per force call

@@ -57,9 +57,10 @@ class Model {
   const std::vector<double>& dilatation() const { return dilatation_; }
   // Gershgorin bound on the stable explicit step at the reference state (notes §4).
   virtual double stable_time_step() const = 0;
-  // Removes bond b of its row for good (fracture): it carries no force and stores no energy.
-  // The same bond in the other row (Families::reverse) is removed by its own call.
-  virtual void break_bond(std::size_t b) = 0;
+  // Removes bond b of row i for good (fracture): it carries no force and stores no energy.
+  // The same bond in the other row (Families::reverse) is removed by its own call; calls for
+  // different rows may run in parallel.
+  virtual void break_bond(int i, std::size_t b) = 0;
   // False once bond b has been broken.
   virtual bool bond_intact(std::size_t b) const = 0;
   // Plasticity (paper §4.2): whether this model carries plastic extensions, the return map run

@@ -120,15 +120,16 @@ void PaperModel::energy_density(const double* y, double* w) {
 
 double PaperModel::stable_time_step() const {
   const int n = particles_.count();
-  std::vector<double> b(n), c_scale(n);
+  std::vector<double> b(n), c(omega_.size());
   for (int i = 0; i < n; ++i) {
     b[i] = b_constant(materials_.shear_modulus[i], materials_.horizon[i]);
-    c_scale[i] = d_constant(materials_.horizon[i]);  // c_ij = d ω_ij (notes §3)
+    for (int k = families_.offsets[i]; k < families_.offsets[i + 1]; ++k)
+      c[k] = d_constant(materials_.horizon[i]) * omega_[k];  // c_ij = d ω_ij (notes §3)
   }
-  return gershgorin_time_step(particles_, families_, materials_, {b, omega_, c_scale, omega_});
+  return gershgorin_time_step(particles_, families_, materials_, {b, omega_, c});
 }
 
-void PaperModel::break_bond(std::size_t b) { omega_[b] = 0; }
+void PaperModel::break_bond(int, std::size_t b) { omega_[b] = 0; }
 
 std::size_t PaperModel::bytes_per_bond() const {
   return 2 * sizeof(int) + 2 * sizeof(double);  // neighbour, |ξ|, reverse index, ω

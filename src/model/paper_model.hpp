@@ -17,7 +17,7 @@ class PaperModel final : public Model {
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
-  void break_bond(std::size_t b) override;
+  void break_bond(int i, std::size_t b) override;
   bool bond_intact(std::size_t b) const override { return omega_[b] != 0; }
 
  private:

@@ -7,13 +7,12 @@
 
 namespace fissure {
 
-// The model's bond constants: b_i per particle, ω_ij per bond, and c_ij = c_scale_i c_shape_ij
-// (c_shape symmetric in i, j) with θ_i = Σ_j c_ij e_ij V_j.
+// The model's bond constants: b_i per particle, and per directed bond ω_ij and c_ij, with
+// θ_i = Σ_j c_ij e_ij V_j (c_ji is read through Families::reverse).
 struct BondConstants {
   const std::vector<double>& b;
   const std::vector<double>& omega;
-  const std::vector<double>& c_scale;
-  const std::vector<double>& c_shape;
+  const std::vector<double>& c;
 };
 
 double gershgorin_time_step(const Particles& particles, const Families& families,
