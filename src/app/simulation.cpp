@@ -129,9 +129,11 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
 
 void Simulation::write_frame() {
   const int n = scene_.particles.count();
-  std::vector<double> displacement(3 * n), damage(n, 0.0);
+  std::vector<double> displacement(3 * n);
   for (int k = 0; k < 3 * n; ++k)
     displacement[k] = state_.position[k] - scene_.particles.reference[k];
+  const std::vector<double> undamaged(post_step_->damage() ? 0 : n, 0.0);
+  const std::vector<double>& damage = post_step_->damage() ? *post_step_->damage() : undamaged;
   const std::string file = fmt::format("particles_{:06d}.vtu", frame_++);
   write_particles_vtu(config_.output.dir + "/" + file, state_.position,
                       {{"displacement", 3, &displacement},

@@ -279,6 +279,37 @@ TEST(Output, VtuFramesParseAndMatchTheRun) {
   }
 }
 
+// With fracture the frames carry the particles' damage φ = 1 − n_i/N_i: a plane crack through
+// a block damages the particles next to it (0 < φ ≤ 1) from frame 0 on, leaves the far ones
+// intact, and summary.json counts the cut bonds.
+TEST(Output, VtuDamageFollowsTheFracture) {
+  const auto dir = test::scratch_dir("output_damage");
+  test::write_file(dir / "scene.yaml",
+                   "time: {end: 0.002, dt: 0.001}\nbodies:\n"
+                   "  - geometry: {box: {min: [0, 0, 0], max: [0.2, 0.1, 0.1]}}\n"
+                   "    resolution: 0.025\n    material: {density: 1000, bulk_modulus: 2.0e3, "
+                   "shear_modulus: 2.0e3, fracture: {critical_stretch: 1}}\n"
+                   "initial_cracks:\n  - {plane: {point: [0.1, 0, 0], normal: [1, 0, 0]}}\n"
+                   "output: {every: 0.001}\n");
+  const auto outcome = test::run_fissure("run " + (dir / "scene.yaml").string() + " --out " +
+                                         (dir / "out").string());
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_GT(std::stol(read_summary(dir / "out" / "summary.json").at("broken_bonds")), 0);
+  const Vtu vtu = read_vtu(dir / "out" / "particles_000000.vtu");
+  ASSERT_FALSE(HasFailure());
+  const auto& damage = vtu.float64.at("damage");
+  const auto& y = vtu.float64.at("position");
+  double near = 0, far = 0;
+  for (std::size_t i = 0; i < damage.size(); ++i) {
+    ASSERT_GE(damage[i], 0.0);
+    ASSERT_LE(damage[i], 1.0);
+    if (std::abs(y[3 * i] - 0.1) < 0.01) near = std::max(near, damage[i]);
+    if (std::abs(y[3 * i] - 0.1) > 0.06) far = std::max(far, damage[i]);
+  }
+  EXPECT_GT(near, 0.2);  // about half of a family lies across the crack
+  EXPECT_EQ(far, 0.0);   // beyond the horizon (0.036 m) of the crack nothing is cut
+}
+
 TEST(Output, ProbesCsvHeaderAndRows) {
   const RunFiles& run = tiny_run();
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
