@@ -160,6 +160,13 @@ void LpsModel::forces(const double* y, double* f) {
     compute_forces<false>(y, f);
 }
 
+void LpsModel::update_dilatation(const double* y) {
+  if (plastic_)
+    compute_dilatation<true>(y);
+  else
+    compute_dilatation<false>(y);
+}
+
 // ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3 for the bonds of row i, after compute_dilatation.
 double LpsModel::deviatoric_extension(const double* y, int i, int b) const {
   const double* yi = y + 3 * i;
@@ -173,10 +180,7 @@ double LpsModel::deviatoric_extension(const double* y, int i, int b) const {
 
 // W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j (notes §3, §6).
 void LpsModel::energy_density(const double* y, double* w) {
-  if (plastic_)
-    compute_dilatation<true>(y);
-  else
-    compute_dilatation<false>(y);
+  update_dilatation(y);
   const int n = particles_.count();
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;

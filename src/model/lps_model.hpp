@@ -24,13 +24,18 @@ class LpsModel final : public Model {
   bool plastic() const override { return plastic_; }
   std::size_t update_plasticity(const double* y) override;
   const std::vector<double>& plastic_extension() const override { return plastic_extension_; }
+  bool has_stiffness() const override { return true; }
+  void assemble_majoriser(const double* y, SparseSymmetric& K) override;
+  void assemble_tangent(const double* y, SparseSymmetric& K) override;
 
  private:
   template <bool Plastic>
   void compute_dilatation(const double* y);
   template <bool Plastic>
   void compute_forces(const double* y, double* f);
+  void update_dilatation(const double* y);
   double deviatoric_extension(const double* y, int i, int b) const;
+  double pair_force(int i, std::size_t b, double length) const;
   void set_up_plasticity(const PlasticPoints& plasticity);
 
   // Per bond, single precision: the same rounded value serves both rows of a pair, so

@@ -13,6 +13,7 @@
 namespace fissure {
 
 struct Scene;
+struct SparseSymmetric;
 
 // Per-particle material constants, expanded from the bodies.
 struct MaterialPoints {
@@ -68,6 +69,13 @@ class Model {
   virtual bool plastic() const { return false; }
   virtual std::size_t update_plasticity(const double*) { return 0; }
   virtual const std::vector<double>& plastic_extension() const { return no_plastic_extension_; }
+  // Stiffness for implicit integrators (notes §3), with e^p frozen, into a matrix of the
+  // pattern linear/sparse_symmetric.hpp names: the PSD bond-wise majoriser K^bw ⪰ K
+  // (bond_pattern) and the exact tangent K = ∂²Π/∂y² (two_hop_pattern). Models without them
+  // return false from has_stiffness() and leave K untouched.
+  virtual bool has_stiffness() const { return false; }
+  virtual void assemble_majoriser(const double*, SparseSymmetric&) {}
+  virtual void assemble_tangent(const double*, SparseSymmetric&) {}
   // Bytes stored per directed bond: the families (neighbour, |ξ|, reverse index) and the
   // model's own bond data.
   virtual std::size_t bytes_per_bond() const = 0;

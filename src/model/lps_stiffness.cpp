@@ -1,0 +1,223 @@
+// Bond-wise stiffness of the LPS model (notes §3, §6): the exact tangent K = ∂²Π/∂y² with e^p
+// frozen, and a positive semidefinite bond-wise majoriser K^bw ⪰ K for Newton's matrix.
+//
+// With ê = u − θ̃|ξ|/3, u = e − e^p, θ̃ = c̄ᵀu (c̄_j = c_ij V_j) and w_j = ω_ij V_j |ξ_ij|, the
+// energy of particle i is a quadratic form in its bond extensions, W_i = ½ uᵀH_i u + …, with
+//   H_i = κ c̄c̄ᵀ + B_i [D − (c̄wᵀ + wc̄ᵀ)/3 + (m_i/9) c̄c̄ᵀ],   D = diag(ω_ij V_j),
+// and Π = Σ V_i W_i. The extension e_ij = |y_j − y_i| − |ξ| has gradient ±n and Hessian
+// (I − nnᵀ)/ℓ, which gives the geometric term p (I − nnᵀ)/ℓ with p = V_i V_j (t_ij + t_ji).
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "linear/sparse_symmetric.hpp"
+#include "model/lps_model.hpp"
+
+namespace fissure {
+
+namespace {
+
+using Vec = std::array<double, 3>;
+
+// Unit bond direction n and deformed length ℓ; a collapsed bond keeps its reference direction.
+struct BondGeometry {
+  Vec n;
+  double length;
+};
+
+BondGeometry bond_geometry(const double* y, const Particles& p, int i, int j, double xi) {
+  Vec d{y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]};
+  double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (length <= 1e-12 * xi) {
+    d = reference_vector(p, i, j);
+    length = 0;
+  }
+  const double norm = length > 0 ? length : xi;
+  return {{d[0] / norm, d[1] / norm, d[2] / norm}, length};
+}
+
+// K_b = k nnᵀ + g (I − nnᵀ): added to the diagonal block of row i, subtracted from block (i, j).
+void scatter_bond(SparseSymmetric& K, int i, int self_block, int other_block, const Vec& n,
+                  double k, double g) {
+  for (int r = 0; r < 3; ++r) {
+    const int row = K.offsets[3 * i + r];
+    for (int c = 0; c < 3; ++c) {
+      const double value = (k - g) * n[r] * n[c] + (r == c ? g : 0.0);
+      K.values[row + 3 * self_block + c] += value;
+      K.values[row + 3 * other_block + c] -= value;
+    }
+  }
+}
+
+}  // namespace
+
+// p_ij = V_i V_j (t_ij + t_ji), the pair force scalar of compute_forces (after compute_dilatation).
+double LpsModel::pair_force(int i, std::size_t b, double length) const {
+  const int j = families_.neighbors[b];
+  const NeighbourTerms& ti = terms_[i];
+  const NeighbourTerms& tj = terms_[j];
+  const double xi = families_.reference_length[b];
+  double deviatoric = (length - xi) * (ti.deviatoric + tj.deviatoric) - xi * (ti.shift + tj.shift);
+  if (plastic_)
+    deviatoric -= ti.deviatoric * plastic_extension_[b] +
+                  tj.deviatoric * plastic_extension_[families_.reverse[b]];
+  const double t = bond_weight_[b] * ti.pressure + bond_reverse_weight_[b] * tj.pressure +
+                   bond_omega_[b] * deviatoric;
+  return ti.volume * tj.volume * t;
+}
+
+// Notes §3, adapted to the calibrated weights: with r = c̄ − 3w/m_i (zero without calibration),
+//   H_i = B_i D + (κ − B_i m_i/9) c̄c̄ᵀ + (B_i m_i/9)(c̄rᵀ + rc̄ᵀ)
+//       ⪯ B_i D + a_i c̄c̄ᵀ + q_i rrᵀ,   a_i = max(0, κ − (1 − ε) B_i m_i/9),  q_i = B_i m_i/(9ε),
+// for any ε in (0, 1] (c̄rᵀ + rc̄ᵀ ⪯ ε c̄c̄ᵀ + rrᵀ/ε; ε = |r|/|c̄| balances the two), and a rank-one
+// aaᵀ ⪯ diag(Σ_k|a_k| |a_j|) by Cauchy–Schwarz. So each bond gets a stiffness along n, and the
+// geometric term is clamped at max(p, 0): K^bw ⪰ K and K^bw ⪰ 0.
+void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
+  update_dilatation(y);
+  const int n = particles_.count();
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& xi = families_.reference_length;
+  const auto& V = particles_.volume;
+  struct RowBound {
+    double a, q, sum_c, sum_r;
+  };
+  std::vector<RowBound> bound(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double m = weighted_volume_[i], B = terms_[i].deviatoric;
+    double sum_c = 0, sum_r = 0, norm_c = 0, norm_r = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const double c = bond_weight_[b] * V[nbr[b]];
+      const double r = m > 0 ? c - 3.0 * bond_omega_[b] * xi[b] * V[nbr[b]] / m : 0.0;
+      sum_c += std::abs(c);
+      sum_r += std::abs(r);
+      norm_c += c * c;
+      norm_r += r * r;
+    }
+    const double eps = norm_c > 0 ? std::min(1.0, std::sqrt(norm_r / norm_c)) : 1.0;
+    const double a = std::max(0.0, materials_.bulk_modulus[i] - (1.0 - eps) * B * m / 9.0);
+    bound[i] = {a, eps > 0 ? B * m / (9.0 * eps) : 0.0, sum_c, sum_r};
+  }
+  // h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond b.
+  auto row_stiffness = [&](int i, std::size_t b) {
+    const int j = nbr[b];
+    const double c = bond_weight_[b] * V[j];
+    const double m = weighted_volume_[i];
+    const double r = m > 0 ? c - 3.0 * bond_omega_[b] * xi[b] * V[j] / m : 0.0;
+    const RowBound& h = bound[i];
+    return V[i] * (terms_[i].deviatoric * bond_omega_[b] * V[j] + h.a * h.sum_c * std::abs(c) +
+                   h.q * h.sum_r * std::abs(r));
+  };
+  std::fill(K.values.begin(), K.values.end(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const int self = self_position(families_, i);
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const int j = nbr[b];
+      const auto g = bond_geometry(y, particles_, i, j, xi[b]);
+      const double k = row_stiffness(i, b) + row_stiffness(j, families_.reverse[b]);
+      const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
+      const int k_index = b - off[i];
+      scatter_bond(K, i, self, k_index + (k_index >= self ? 1 : 0), g.n, k,
+                   std::max(p, 0.0) / std::max(g.length, 1e-300));
+    }
+  }
+}
+
+// The exact tangent (notes §3): per family, K_i = V_i J_iᵀ H_i J_i with J_iᵀ a = Σ_j a_j n_ij at j
+// and −Σ_j a_j n_ij at i, plus the geometric term. Rows are assembled one particle at a time, each
+// from the families that contain it, so no two threads write to the same row.
+void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K) {
+  update_dilatation(y);
+  const int n = particles_.count();
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& rev = families_.reverse;
+  const auto& xi = families_.reference_length;
+  const auto& V = particles_.volume;
+  // Per family: Σ_j c̄_ij n_ij and Σ_j w_ij n_ij, and the bond directions.
+  std::vector<Vec> sum_c(n), sum_w(n);
+  std::vector<Vec> direction(families_.directed_bonds());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    Vec sc{}, sw{};
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const int j = nbr[b];
+      direction[b] = bond_geometry(y, particles_, i, j, xi[b]).n;
+      for (int d = 0; d < 3; ++d) {
+        sc[d] += bond_weight_[b] * V[j] * direction[b][d];
+        sw[d] += bond_omega_[b] * V[j] * xi[b] * direction[b][d];
+      }
+    }
+    sum_c[i] = sc;
+    sum_w[i] = sw;
+  }
+  std::fill(K.values.begin(), K.values.end(), 0.0);
+#pragma omp parallel
+  {
+    std::vector<int> block_of(n, -1);
+#pragma omp for schedule(dynamic, 16)
+    for (int r = 0; r < n; ++r) {
+      const int first = K.offsets[3 * r], blocks = (K.offsets[3 * r + 1] - first) / 3;
+      for (int k = 0; k < blocks; ++k) block_of[K.columns[first + 3 * k] / 3] = k;
+      const int stride = K.offsets[3 * r + 1] - first;  // values per scalar row
+      auto add = [&](int s, double scale, const Vec& a, const Vec& c) {
+        const int k = block_of[s];
+        for (int e = 0; e < 3; ++e)
+          for (int f = 0; f < 3; ++f)
+            K.values[first + e * stride + 3 * k + f] += scale * a[e] * c[f];
+      };
+      // Bond terms of row r: V_r B_r ω V_s + V_s B_s ω V_r along n, geometric p/ℓ across.
+      for (int b = off[r]; b < off[r + 1]; ++b) {
+        const int s = nbr[b];
+        const auto g = bond_geometry(y, particles_, r, s, xi[b]);
+        const double k =
+            V[r] * V[s] * bond_omega_[b] * (terms_[r].deviatoric + terms_[s].deviatoric);
+        const double geometric = g.length > 0 ? pair_force(r, b, g.length) / g.length : 0.0;
+        for (int e = 0; e < 3; ++e)
+          for (int f = 0; f < 3; ++f) {
+            const double value = (k - geometric) * g.n[e] * g.n[f] + (e == f ? geometric : 0.0);
+            K.values[first + e * stride + 3 * block_of[r] + f] += value;
+            K.values[first + e * stride + 3 * block_of[s] + f] -= value;
+          }
+      }
+      // Family terms of every family containing r: its own (i = r) and its members'.
+      for (int q = off[r] - 1; q < off[r + 1]; ++q) {
+        const int i = q < off[r] ? r : nbr[q];
+        // G_c and G_w of family i at node r
+        Vec gc_r, gw_r;
+        if (i == r) {
+          for (int d = 0; d < 3; ++d) gc_r[d] = -sum_c[i][d], gw_r[d] = -sum_w[i][d];
+        } else {
+          const int b = rev[q];  // bond i → r in row i
+          for (int d = 0; d < 3; ++d) {
+            gc_r[d] = bond_weight_[b] * V[r] * direction[b][d];
+            gw_r[d] = bond_omega_[b] * V[r] * xi[b] * direction[b][d];
+          }
+        }
+        const double B = terms_[i].deviatoric;
+        const double cc = V[i] * (materials_.bulk_modulus[i] + B * weighted_volume_[i] / 9.0);
+        const double cw = -V[i] * B / 3.0;
+        Vec gc_s, gw_s;
+        for (int d = 0; d < 3; ++d) gc_s[d] = -sum_c[i][d], gw_s[d] = -sum_w[i][d];
+        add(i, cc, gc_r, gc_s);
+        add(i, cw, gc_r, gw_s);
+        add(i, cw, gw_r, gc_s);
+        for (int b = off[i]; b < off[i + 1]; ++b) {
+          const int s = nbr[b];
+          for (int d = 0; d < 3; ++d) {
+            gc_s[d] = bond_weight_[b] * V[s] * direction[b][d];
+            gw_s[d] = bond_omega_[b] * V[s] * xi[b] * direction[b][d];
+          }
+          add(s, cc, gc_r, gc_s);
+          add(s, cw, gc_r, gw_s);
+          add(s, cw, gw_r, gc_s);
+        }
+      }
+      for (int k = 0; k < blocks; ++k) block_of[K.columns[first + 3 * k] / 3] = -1;
+    }
+  }
+}
+
+}  // namespace fissure
