@@ -1,4 +1,4 @@
-// fissure: run a scene, or describe it.
+// fissure: run a scene, describe it, or render a run's frames.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -8,6 +8,8 @@
 #include "app/info.hpp"
 #include "app/simulation.hpp"
 #include "core/error.hpp"
+#include "render/render.hpp"
+#include "render/render_settings.hpp"
 #include "scene/config.hpp"
 
 int main(int argc, char** argv) {
@@ -28,6 +30,14 @@ int main(int argc, char** argv) {
   info->add_option("--set", overrides, "override a config key: key.path=value (repeatable)")
       ->allow_extra_args(false);
 
+  auto* render = app.add_subcommand("render", "turn a run's frames into PNG pictures and a GIF");
+  std::string field;
+  render->add_option("out_dir", out_dir, "the run's output folder")->required();
+  render->add_option("--config", config_path, "scene file whose render: block applies");
+  render->add_option("--field", field, "colour by damage, velocity, displacement or dilatation");
+  render->add_option("--set", overrides, "override a config key, e.g. render.every=5")
+      ->allow_extra_args(false);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -36,6 +46,14 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*render) {
+      if (!field.empty()) overrides.push_back("render.field=" + field);
+      const auto r = fissure::render_run(
+          out_dir, fissure::load_render_settings(config_path, overrides), isatty(fileno(stderr)));
+      fmt::print("rendered {} frames to {} in {:.1f} s{}\n", r.frames, r.folder, r.seconds,
+                 r.animation.empty() ? "" : ", animation " + r.animation);
+      return 0;
+    }
     fissure::Config config = fissure::load_config(config_path, overrides);
     if (!out_dir.empty()) config.output.dir = out_dir;
     if (*info) {

@@ -10,6 +10,7 @@
 
 #include "app/energy.hpp"
 #include "core/error.hpp"
+#include "fracture/fragments.hpp"
 #include "fracture/post_step.hpp"
 #include "integrators/integrator.hpp"
 #include "io/atomic_file.hpp"
@@ -49,10 +50,10 @@ void write_summary(const std::string& path, const RunSummary& s) {
         "{{\n  \"status\": \"{}\",\n  \"particles\": {},\n  \"bonds\": {},\n  \"steps\": {},\n"
         "  \"dt\": {},\n  \"stable_dt\": {},\n  \"wall_seconds\": {},\n"
         "  \"seconds_per_step\": {},\n  \"setup_seconds\": {},\n  \"peak_rss_mb\": {},\n"
-        "  \"energy_drift\": {},\n  \"broken_bonds\": {}\n}}\n",
+        "  \"energy_drift\": {},\n  \"broken_bonds\": {},\n  \"fragments\": {}\n}}\n",
         s.status, s.particles, s.bonds, s.steps, json_number(s.dt), json_number(s.stable_dt),
         json_number(s.wall_seconds), json_number(s.seconds_per_step), json_number(s.setup_seconds),
-        json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds);
+        json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds, s.fragments);
   });
 }
 
@@ -204,6 +205,7 @@ RunSummary Simulation::run() {
       summary_.wall_seconds = seconds_since(setup_start_);
       summary_.peak_rss_mb = peak_rss_mb();
       summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
+      summary_.fragments = count_fragments(scene_.families, *model_);
       write_summary(config_.output.dir + "/summary.json", summary_);
       const double* x = &scene_.particles.reference[3 * bad];
       throw RunError(fmt::format(
@@ -228,6 +230,7 @@ RunSummary Simulation::run() {
   summary_.wall_seconds = seconds_since(setup_start_);
   summary_.peak_rss_mb = peak_rss_mb();
   summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
+  summary_.fragments = count_fragments(scene_.families, *model_);
   write_summary(config_.output.dir + "/summary.json", summary_);
   return summary_;
 }

@@ -22,6 +22,7 @@ struct RunSummary {
   double peak_rss_mb = 0;
   double energy_drift = 0;
   long broken_bonds = 0;  // each pair counted once, initial cracks included
+  long fragments = 0;     // connected components of intact bonds at the end
   std::string status = "completed";
 };
 

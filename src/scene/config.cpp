@@ -315,7 +315,7 @@ TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
 Config read_config(const YamlReader& r, const YAML::Node& root) {
   r.check_keys(root, "",
                {"name", "time", "integrator", "gravity", "bodies", "constraints", "initial_cracks",
-                "colliders", "contact", "damping", "probes", "output"});
+                "colliders", "contact", "damping", "probes", "output", "render"});
   Config c;
   c.file = r.file();
   c.name = root["name"] ? r.string(root["name"], "name")
@@ -385,6 +385,7 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   c.output.probe_every = out && out["probe_every"]
                              ? r.positive(out["probe_every"], "output.probe_every")
                              : c.output.every;
+  if (root["render"]) c.render = read_render_settings(r, root["render"]);
   return c;
 }
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "render/render_settings.hpp"
+
 namespace fissure {
 
 using Vec3 = std::array<double, 3>;
@@ -141,6 +143,7 @@ struct Config {
   double damping = 0;  // mass-proportional damping coefficient [1/s]
   std::vector<Probe> probes;
   OutputSettings output;
+  RenderSettings render;  // only `fissure render` reads it
 
   bool fracture_enabled() const;
   bool plasticity_enabled() const;

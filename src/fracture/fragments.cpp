@@ -1,0 +1,49 @@
+#include "fracture/fragments.hpp"
+
+#include <numeric>
+#include <vector>
+
+namespace fissure {
+
+namespace {
+
+// Union-find with path halving and union by size.
+class DisjointSets {
+ public:
+  explicit DisjointSets(int n) : parent_(n), size_(n, 1) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int find(int i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  // Returns true if a and b were in different sets.
+  bool unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    if (size_[a] < size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    size_[a] += size_[b];
+    return true;
+  }
+
+ private:
+  std::vector<int> parent_, size_;
+};
+
+}  // namespace
+
+long count_fragments(const Families& families, const Model& model) {
+  const int n = static_cast<int>(families.offsets.size()) - 1;
+  DisjointSets sets(n);
+  long components = n;
+  for (int i = 0; i < n; ++i)
+    for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
+      const int j = families.neighbors[b];
+      if (j > i && model.bond_intact(b) && sets.unite(i, j)) --components;
+    }
+  return components;
+}
+
+}  // namespace fissure
