@@ -1,15 +1,19 @@
 // What each effect costs: wall time per step of the same block with one effect enabled at a
-// time, relative to the purely elastic block. Prints "effect seconds_per_step ratio" lines.
+// time, relative to the purely elastic block. Prints "effect seconds_per_step ratio" lines, and
+// one line comparing the elastic force kernel with a copy compiled with no effect code at all.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <vector>
 
 #include "fracture/post_step.hpp"
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
+#include "pure_elastic_kernel.hpp"
 #include "scene/scene.hpp"
 
 namespace {
@@ -38,6 +42,36 @@ double seconds_per_step(const std::string& yaml, int steps) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / steps);
   }
   return best;
+}
+
+// Best of seven timings of `calls` force evaluations by the model's elastic kernel and by the
+// kernel with no effect code, alternating; prints both, their ratio and how far the forces differ.
+void compare_with_no_effect_code(const std::string& yaml, int calls) {
+  const fissure::Scene scene = fissure::build_scene(fissure::parse_config(yaml, "bench.yaml"));
+  auto model = fissure::make_model(scene);
+  fissure::bench::PureElasticKernel pure(scene);
+  std::vector<double> y = scene.particles.reference;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] *= 1.0 + 1e-4 * std::sin(0.37 * k);
+  std::vector<double> f_model(y.size()), f_pure(y.size());
+  auto time = [&](auto&& evaluate) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int c = 0; c < calls; ++c) evaluate();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / calls;
+  };
+  double best_model = std::numeric_limits<double>::infinity(), best_pure = best_model;
+  for (int repeat = 0; repeat < 7; ++repeat) {
+    best_model = std::min(best_model, time([&] { model->forces(y.data(), f_model.data()); }));
+    best_pure = std::min(best_pure, time([&] { pure.forces(y.data(), f_pure.data()); }));
+  }
+  double difference = 0, scale = 0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    difference = std::max(difference, std::abs(f_model[k] - f_pure[k]));
+    scale = std::max(scale, std::abs(f_model[k]));
+  }
+  fmt::print(
+      "elastic_kernel seconds_per_call {:.4g} no_effect_code_kernel seconds_per_call {:.4g} "
+      "ratio {:.3f} (target <= 1.05) max_force_difference {:.1e}\n",
+      best_model, best_pure, best_model / best_pure, scale > 0 ? difference / scale : 0.0);
 }
 
 }  // namespace
@@ -69,5 +103,6 @@ int main(int argc, char** argv) {
     fmt::print("{} seconds_per_step {:.4g} ratio_to_elastic {:.3f}\n", e.name, seconds,
                seconds / elastic);
   }
+  compare_with_no_effect_code(fmt::format(fmt::runtime(block), "", ""), 5 * steps);
   return 0;
 }

@@ -77,13 +77,14 @@ std::size_t BondBreaking::run(const double* y) {
   const std::vector<double>& plastic = model_.plastic_extension();
   const bool plastic_bonds = !plastic.empty();
   std::size_t exceeded = 0;
-  // s^ω_ij = (1 + αφ_i) s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19): the bond breaks when
-  // e − e^p exceeds s_c ω|ξ| / (1 + αφ_i), with ω|ξ| = δ (Eq 5) or δ|ξ|/|Gξ| (Eq 17). Tension
-  // only: a compressed bond never breaks.
+  // s^ω_ij = s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19), against a threshold that grows with
+  // damage as the paper's text asks ("continuously increasing the crack threshold as the material
+  // gets damaged", docs/model.md): the bond breaks when e − e^p exceeds s_c (1 + αφ_i) ω|ξ|,
+  // with ω|ξ| = δ (Eq 5) or δ|ξ|/|Gξ| (Eq 17). Tension only: a compressed bond never breaks.
   const bool anisotropic = !reach_.empty();
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double scale = critical_stretch_[i] / (1.0 + alpha_[i] * damage_[i]);
+    const double scale = critical_stretch_[i] * (1.0 + alpha_[i] * damage_[i]);
     for (int b = off[i]; b < off[i + 1]; ++b) {
       if (broken_[b]) continue;
       const double* yi = y + 3 * i;
