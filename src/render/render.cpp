@@ -72,6 +72,18 @@ void read_surface(const std::string& path, PovScene& scene) {
   }
 }
 
+// The particles that still hold a bond (damage below 1): the dust of particles that lost every
+// bond would otherwise stretch the camera's bounds. All of them when none qualifies.
+std::vector<double> attached_points(const VtuGrid& grid) {
+  const auto damage = grid.point_data.find("damage");
+  if (damage == grid.point_data.end()) return grid.points;
+  std::vector<double> points;
+  for (long i = 0; i < grid.point_count(); ++i)
+    if (damage->second.values[i] < 1.0)
+      points.insert(points.end(), grid.points.begin() + 3 * i, grid.points.begin() + 3 * i + 3);
+  return points.empty() ? grid.points : points;
+}
+
 }  // namespace
 
 RenderSummary render_run(const std::string& out_dir, const RenderSettings& s, bool progress) {
@@ -87,7 +99,7 @@ RenderSummary render_run(const std::string& out_dir, const RenderSettings& s, bo
   double radius = s.particle_radius;
   for (const FrameFiles& frame : frames) {
     const VtuGrid grid = read_vtu(frame.particles);
-    bounds.include(robust_bounds(grid.points));
+    bounds.include(robust_bounds(attached_points(grid)));
     top = std::max(top, upper_percentile(field_values(grid, s.field)));
     if (radius == 0 && grid.point_count() > 0) {
       const Bounds b = robust_bounds(grid.points);
