@@ -30,10 +30,12 @@ void print_info(const Config& config) {
   else
     fmt::print("dt: {:.4g} s{}\n", config.time.dt,
                config.time.dt > stable_dt ? " (above the stable estimate)" : "");
-  fmt::print("effects: elasticity{}{}{}{}{}\n", config.plasticity_enabled() ? ", plasticity" : "",
+  fmt::print("effects: elasticity{}{}{}{}{}{}{}\n",
+             config.plasticity_enabled() ? ", plasticity" : "",
              config.anisotropy_enabled() ? ", anisotropy" : "",
              config.fracture_enabled() ? ", fracture" : "", config.contact.self ? ", contact" : "",
-             config.colliders.empty() ? "" : ", colliders");
+             config.colliders.empty() ? "" : ", colliders",
+             config.output.surface ? ", surface" : "", config.output.tets ? ", tets" : "");
 }
 
 }  // namespace fissure

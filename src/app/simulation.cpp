@@ -16,6 +16,7 @@
 #include "io/atomic_file.hpp"
 #include "io/probes_csv.hpp"
 #include "io/vtu_writer.hpp"
+#include "mesh/surface_writer.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -65,6 +66,7 @@ void clear_previous_output(const std::string& dir) {
     if (frame || name == "particles.pvd" || name == "probes.csv" || name == "summary.json")
       std::filesystem::remove(entry.path());
   }
+  remove_surface_output(dir);
 }
 
 class Simulation {
@@ -87,6 +89,7 @@ class Simulation {
   std::unique_ptr<PostStep> post_step_;
   std::unique_ptr<ProbesCsv> probes_;
   std::unique_ptr<PvdIndex> pvd_;
+  std::unique_ptr<SurfaceWriter> surface_writer_;  // only with output.surface or output.tets
   State state_;
   RunSummary summary_;
   int frame_ = 0;
@@ -123,6 +126,9 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   probes_ =
       std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles);
   pvd_ = std::make_unique<PvdIndex>(config.output.dir + "/particles.pvd");
+  if (config.output.embedded_mesh())
+    surface_writer_ = std::make_unique<SurfaceWriter>(config.output.dir, config.output.surface,
+                                                      config.output.tets);
   state_.position = scene_.particles.reference;
   state_.velocity = scene_.particles.velocity;
   dynamics_->constrain_velocity(0.0, state_.velocity.data());
@@ -143,6 +149,10 @@ void Simulation::write_frame() {
                        {"dilatation", 1, &model_->dilatation()}},
                       &scene_.particles.body);
   pvd_->add(state_.time, file);
+  if (EmbeddedMesh* mesh = post_step_->embedded_mesh()) {
+    mesh->place(state_.position.data());
+    surface_writer_->write(frame_ - 1, state_.time, *mesh, damage, scene_.particles.body);
+  }
 }
 
 void Simulation::sample_energy() {
@@ -194,7 +204,8 @@ RunSummary Simulation::run() {
     const double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
     integrator_->step(*dynamics_, state_, h);
     dynamics_->end_step(h);
-    if (post_step_->run(state_.position.data())) integrator_->bonds_changed();
+    if (post_step_->run(state_.position.data(), state_.velocity.data(), h))
+      integrator_->bonds_changed();
     constraint_work_ += dt * dynamics_->constraint_power();
     if (config_.damping > 0)
       damping_loss_ +=

@@ -1,5 +1,6 @@
 #include "fracture/bond_breaking.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -97,6 +98,7 @@ std::size_t BondBreaking::run(const double* y) {
       exceeded += exceeded_[b];
     }
   }
+  changed_.clear();
   if (exceeded == 0) return 0;
   // A bond breaks in both rows when either row's criterion is exceeded; each row updates only
   // its own entries, so the rows can run in parallel.
@@ -110,8 +112,13 @@ std::size_t BondBreaking::run(const double* y) {
         ++removed;
         changed = true;
       }
-    if (changed) update_damage(i);
+    if (changed) {
+      update_damage(i);
+#pragma omp critical(fissure_changed_rows)
+      changed_.push_back(i);
+    }
   }
+  std::sort(changed_.begin(), changed_.end());
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < exceeded_.size(); ++b) exceeded_[b] = 0;
   broken_pairs_ += removed / 2;

@@ -24,6 +24,8 @@ class BondBreaking {
   const std::vector<std::uint8_t>& broken() const { return broken_; }
   // Broken bonds, each pair counted once.
   std::size_t broken_bonds() const { return broken_pairs_; }
+  // The particles that lost bonds in the last run, in increasing order.
+  const std::vector<int>& changed() const { return changed_; }
 
  private:
   void remove(int i, int b);
@@ -39,6 +41,7 @@ class BondBreaking {
   std::vector<std::uint8_t> exceeded_;  // per directed bond, this step
   std::vector<int> intact_;             // n_i
   std::vector<double> damage_;          // φ_i
+  std::vector<int> changed_;            // rows that lost bonds in the last run
   std::size_t broken_pairs_ = 0;
 };
 

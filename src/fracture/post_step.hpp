@@ -1,10 +1,11 @@
 #pragma once
 // The post-step every integrator hands over to after a completed step (never inside a force
-// evaluation): the plastic return map (paper §4.2), then bond breaking (§5.1). Only the effects
-// the scene asks for run.
+// evaluation): the plastic return map (paper §4.2), then bond breaking (§5.1), then the embedded
+// mesh's vertex splitting and motion (§5.2). Only the effects the scene asks for run.
 #include <memory>
 
 #include "fracture/bond_breaking.hpp"
+#include "mesh/embedded_mesh.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -14,14 +15,19 @@ class PostStep {
  public:
   PostStep(const Scene& scene, Model& model);
   // Returns true if the bond set changed, so the integrator must drop what it derived from it.
-  bool run(const double* y);
+  // `velocity` and the step `dt` move the embedded mesh's vertices with `surface_motion:
+  // velocity` (Eq 22).
+  bool run(const double* y, const double* velocity = nullptr, double dt = 0);
   // φ per particle, or nullptr without fracture.
   const std::vector<double>* damage() const;
   std::size_t broken_bonds() const;
+  // The embedded tet mesh, or nullptr unless the config writes surfaces or tets.
+  EmbeddedMesh* embedded_mesh() { return embedded_mesh_.get(); }
 
  private:
   Model& model_;
   std::unique_ptr<BondBreaking> bond_breaking_;
+  std::unique_ptr<EmbeddedMesh> embedded_mesh_;
 };
 
 }  // namespace fissure

@@ -377,7 +377,9 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     }
   }
   const YAML::Node out = root["output"];
-  if (out) r.check_keys(out, "output", {"dir", "every", "probe_every"});
+  if (out)
+    r.check_keys(out, "output",
+                 {"dir", "every", "probe_every", "surface", "tets", "surface_motion"});
   c.output.dir = out && out["dir"] ? r.string(out["dir"], "output.dir") : "out/" + c.name;
   if (c.output.dir.empty()) r.fail("output.dir", "must not be empty");
   c.output.every =
@@ -385,6 +387,15 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   c.output.probe_every = out && out["probe_every"]
                              ? r.positive(out["probe_every"], "output.probe_every")
                              : c.output.every;
+  if (out && out["surface"]) c.output.surface = r.boolean(out["surface"], "output.surface");
+  if (out && out["tets"]) c.output.tets = r.boolean(out["tets"], "output.tets");
+  if (out && out["surface_motion"]) {
+    const std::string motion = r.string(out["surface_motion"], "output.surface_motion");
+    if (motion == "velocity")
+      c.output.surface_motion = OutputSettings::SurfaceMotion::velocity;
+    else if (motion != "position")
+      r.fail("output.surface_motion", "expected `position` or `velocity`, got '" + motion + "'");
+  }
   if (root["render"]) c.render = read_render_settings(r, root["render"]);
   return c;
 }

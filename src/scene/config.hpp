@@ -127,6 +127,12 @@ struct OutputSettings {
   std::string dir;
   double every = 0;        // seconds of simulated time between VTU frames
   double probe_every = 0;  // seconds between probes.csv rows (default: every)
+  bool surface = false;    // crack surfaces of the embedded tet mesh per frame (§5.2)
+  bool tets = false;       // the whole embedded tet mesh per frame
+  // How mesh vertices follow the particles: `position` (mass-weighted displacement) or
+  // `velocity` (Eqs 20–22, integrated every step).
+  enum class SurfaceMotion { position, velocity } surface_motion = SurfaceMotion::position;
+  bool embedded_mesh() const { return surface || tets; }
 };
 
 struct Config {

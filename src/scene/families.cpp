@@ -101,9 +101,9 @@ Families build_families(const Particles& particles, const std::vector<double>& h
   return f;
 }
 
-void sort_spatially(Particles& p, double cell) {
+std::vector<int> sort_spatially(Particles& p, double cell) {
   const int n = p.count();
-  if (n == 0) return;
+  if (n == 0) return {};
   double lo[3] = {p.reference[0], p.reference[1], p.reference[2]};
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p.reference[3 * i + d]);
@@ -134,6 +134,7 @@ void sort_spatially(Particles& p, double cell) {
     sorted.body[k] = p.body[i];
   }
   p = std::move(sorted);
+  return order;
 }
 
 }  // namespace fissure

@@ -28,7 +28,7 @@ struct Families {
 Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body);
 
 // Reorders particles along a Morton curve of cell size `cell` so that families are near in
-// memory.
-void sort_spatially(Particles& particles, double cell);
+// memory. Returns the permutation: new index k holds the particle that had index order[k].
+std::vector<int> sort_spatially(Particles& particles, double cell);
 
 }  // namespace fissure

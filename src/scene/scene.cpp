@@ -34,8 +34,11 @@ TetMesh tetrahedralize_body(const Body& body, const std::string& config_file, st
   }
 }
 
-// One particle per tet at its barycentre, with the tet's volume and mass (paper §5.2).
-void add_tet_particles(const TetMesh& mesh, int body_index, const Body& body, Particles& p) {
+// One particle per tet at its barycentre, with the tet's volume and mass (paper §5.2). Returns
+// the particle of each tet, −1 for a tet without volume.
+std::vector<int> add_tet_particles(const TetMesh& mesh, int body_index, const Body& body,
+                                   Particles& p) {
+  std::vector<int> particle(mesh.tet_count(), -1);
   for (int t = 0; t < mesh.tet_count(); ++t) {
     const double* v[4];
     for (int c = 0; c < 4; ++c) v[c] = &mesh.vertices[3 * mesh.tets[4 * t + c]];
@@ -50,6 +53,7 @@ void add_tet_particles(const TetMesh& mesh, int body_index, const Body& body, Pa
                  a[2] * (b[0] * d[1] - b[1] * d[0])) /
         6.0;
     if (!(volume > 0)) continue;
+    particle[t] = p.count();
     for (int k = 0; k < 3; ++k) {
       p.reference.push_back(0.25 * (v[0][k] + v[1][k] + v[2][k] + v[3][k]));
       p.velocity.push_back(body.velocity[k]);
@@ -58,6 +62,7 @@ void add_tet_particles(const TetMesh& mesh, int body_index, const Body& body, Pa
     p.mass.push_back(body.material.density * volume);
     p.body.push_back(body_index);
   }
+  return particle;
 }
 
 void add_point_particles(const Body& body, int body_index, const std::string& key, Particles& p) {
@@ -115,11 +120,13 @@ Scene build_scene(const Config& config) {
     const Body& body = config.bodies[b];
     const std::string key = fmt::format("bodies[{}].geometry", b);
     const int before = scene.particles.count();
-    if (body.geometry.kind == Geometry::Kind::points)
+    if (body.geometry.kind == Geometry::Kind::points) {
       add_point_particles(body, static_cast<int>(b), key, scene.particles);
-    else
-      add_tet_particles(tetrahedralize_body(body, config.file, b), static_cast<int>(b), body,
-                        scene.particles);
+    } else {
+      BodyTetMesh tets{static_cast<int>(b), tetrahedralize_body(body, config.file, b), {}};
+      tets.particle = add_tet_particles(tets.mesh, tets.body, body, scene.particles);
+      if (config.output.embedded_mesh()) scene.tet_meshes.push_back(std::move(tets));
+    }
     if (scene.particles.count() == before)
       throw InputError(config.file, key,
                        fmt::format("body '{}' has no particles (is the geometry smaller than "
@@ -129,7 +136,14 @@ Scene build_scene(const Config& config) {
     scene.horizon_of_body.push_back(delta);
     smallest_horizon = b == 0 ? delta : std::min(smallest_horizon, delta);
   }
-  sort_spatially(scene.particles, 0.5 * smallest_horizon);
+  const std::vector<int> order = sort_spatially(scene.particles, 0.5 * smallest_horizon);
+  if (!scene.tet_meshes.empty()) {
+    std::vector<int> sorted_index(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) sorted_index[order[k]] = static_cast<int>(k);
+    for (BodyTetMesh& tets : scene.tet_meshes)
+      for (int& i : tets.particle)
+        if (i >= 0) i = sorted_index[i];
+  }
   try {
     scene.families = build_families(scene.particles, scene.horizon_of_body);
   } catch (const std::length_error& e) {
