@@ -12,12 +12,17 @@ void CrackFaces::add(int face, int opposite) {
 }
 
 void CrackFaces::retire(int face, int opposite) {
-  if (state_[face] == kActive) state_[face] = state_[opposite] = kRetired;
+  if (state_[face] != kActive) return;
+  state_[face] = state_[opposite] = kRetired;
+  ++retired_;
 }
 
 void CrackFaces::end_pass() {
-  set_.erase(std::remove_if(set_.begin(), set_.end(), [&](int f) { return state_[f] != kActive; }),
-             set_.end());
+  if (retired_ > 0)
+    set_.erase(
+        std::remove_if(set_.begin(), set_.end(), [&](int f) { return state_[f] != kActive; }),
+        set_.end());
+  retired_ = 0;
   fresh_begin_ = set_.size();
 }
 

@@ -35,6 +35,7 @@ class CrackFaces {
   std::vector<int> set_;
   std::size_t fresh_begin_ = 0;
   std::size_t total_ = 0;
+  std::size_t retired_ = 0;  // retired since the last pass, still in set_
 };
 
 }  // namespace fissure
