@@ -9,7 +9,7 @@
 namespace fissure {
 
 void print_info(const Config& config) {
-  make_integrator(config.integrator.type, config.file);
+  make_integrator(config.integrator, config.file);
   const Scene scene = build_scene(config);
   const auto model = make_model(scene);
   const double stable_dt = model->stable_time_step();

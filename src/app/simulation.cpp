@@ -42,19 +42,36 @@ int first_nonfinite(const State& s) {
   return first == n ? -1 : first;
 }
 
+// time.dt: auto: the explicit estimate times time.safety; for the static scheme, time.end over
+// its load increments; for an adaptive integrator, the frame interval (its largest step).
+double automatic_time_step(const Config& config, const Integrator& integrator, double stable_dt) {
+  const IntegratorSettings& s = config.integrator;
+  if (s.type == "petsc_newton" && s.scheme == "static") return config.time.end / s.steps;
+  if (integrator.adaptive()) return std::min(config.output.every, config.time.end);
+  return config.time.safety * stable_dt;
+}
+
 // A JSON number, or null where the value is not finite (JSON has no inf or nan).
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "null"; }
 
 void write_summary(const std::string& path, const RunSummary& s) {
+  std::string statistics;
+  for (const auto& [name, value] : s.integrator_statistics)
+    statistics +=
+        fmt::format("{}\n    \"{}\": {}", statistics.empty() ? "" : ",", name, json_number(value));
+  if (!statistics.empty()) statistics += "\n  ";
   write_atomically(path, [&](std::ostream& out) {
     out << fmt::format(
         "{{\n  \"status\": \"{}\",\n  \"particles\": {},\n  \"bonds\": {},\n  \"steps\": {},\n"
         "  \"dt\": {},\n  \"stable_dt\": {},\n  \"wall_seconds\": {},\n"
         "  \"seconds_per_step\": {},\n  \"setup_seconds\": {},\n  \"peak_rss_mb\": {},\n"
-        "  \"energy_drift\": {},\n  \"broken_bonds\": {},\n  \"fragments\": {}\n}}\n",
+        "  \"energy_drift\": {},\n  \"broken_bonds\": {},\n  \"fragments\": {},\n"
+        "  \"post_steps\": {},\n  \"integrator\": \"{}\",\n  \"integrator_statistics\": "
+        "{{{}}}\n}}\n",
         s.status, s.particles, s.bonds, s.steps, json_number(s.dt), json_number(s.stable_dt),
         json_number(s.wall_seconds), json_number(s.seconds_per_step), json_number(s.setup_seconds),
-        json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds, s.fragments);
+        json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds, s.fragments,
+        s.post_steps, s.integrator, statistics);
   });
 }
 
@@ -100,20 +117,29 @@ class Simulation {
 
 Simulation::Simulation(const Config& config, const RunOptions& options)
     : config_(config), options_(options), setup_start_(Clock::now()) {
-  integrator_ = make_integrator(config.integrator.type, config.file);
+  integrator_ = make_integrator(config.integrator, config.file);
   scene_ = build_scene(config);
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
   post_step_ = std::make_unique<PostStep>(scene_, *model_);
+  summary_.integrator = config.integrator.type;
   summary_.particles = scene_.particles.count();
   summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
   summary_.stable_dt = model_->stable_time_step();
-  summary_.dt = config.time.dt_auto ? config.time.safety * summary_.stable_dt : config.time.dt;
-  if (!config.time.dt_auto && config.time.dt > summary_.stable_dt)
-    fmt::print(stderr,
-               "warning: {}: time.dt = {:.3g} s exceeds the stable estimate {:.3g} s of the "
-               "explicit step; the run may blow up\n",
-               config.file, config.time.dt, summary_.stable_dt);
+  summary_.dt = config.time.dt_auto ? automatic_time_step(config, *integrator_, summary_.stable_dt)
+                                    : config.time.dt;
+  if (integrator_->explicit_step() && !config.time.dt_auto && config.time.dt > summary_.stable_dt) {
+    const std::string reason =
+        fmt::format("{:.3g} s exceeds the stable estimate {:.3g} s of the explicit integrator '{}'",
+                    config.time.dt, summary_.stable_dt, config.integrator.type);
+    if (!config.integrator.allow_unstable_dt)
+      throw InputError(config.file, "time.dt",
+                       reason +
+                           "; use dt: auto, a step below the estimate, an implicit "
+                           "integrator (petsc_newton, arkode), or "
+                           "integrator.allow_unstable_dt: true to run it anyway");
+    fmt::print(stderr, "warning: {}: time.dt = {}; the run may blow up\n", config.file, reason);
+  }
   constexpr double max_steps = 1e9;
   if (config.time.end / summary_.dt > max_steps)
     throw InputError(
@@ -171,12 +197,14 @@ void Simulation::sample_energy() {
 void Simulation::report_progress(Clock::time_point start, bool final) {
   const double elapsed = seconds_since(start);
   const double rate = summary_.steps / std::max(elapsed, 1e-9);
-  const double remaining = (config_.time.end - state_.time) / summary_.dt / std::max(rate, 1e-9);
+  const double remaining =
+      (config_.time.end - state_.time) * elapsed / std::max(state_.time, 1e-300);
   fmt::print(stderr, "\rt = {:.4g} / {:.4g} s   {:.0f} steps/s   ETA {:.0f} s   {}", state_.time,
              config_.time.end, rate, std::max(remaining, 0.0), final ? "\n" : "");
 }
 
 RunSummary Simulation::run() {
+  const bool adaptive = integrator_->adaptive();
   const double dt = summary_.dt;
   const long steps = static_cast<long>(std::ceil(config_.time.end / dt - 1e-9));
   const double end = config_.time.end;
@@ -198,18 +226,23 @@ RunSummary Simulation::run() {
   const auto start = Clock::now();
   auto last_report = start;
   double stepping_seconds = 0;
-  for (long s = 0; s < steps; ++s) {
+  for (long s = 0; adaptive ? end - state_.time > 1e-12 * end : s < steps; ++s) {
     const auto step_start = Clock::now();
-    // The last step is shortened to land on time.end.
-    const double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
-    integrator_->step(*dynamics_, state_, h);
+    // A fixed-step integrator shortens its last step to land on time.end; an adaptive one stops
+    // on frame times and time.end, and takes at most dt.
+    double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
+    if (adaptive) {
+      h = std::min(dt, end - state_.time);
+      if (next_frame - state_.time > tolerance) h = std::min(h, next_frame - state_.time);
+    }
+    h = integrator_->step(*dynamics_, state_, h);
     dynamics_->end_step(h);
     if (post_step_->run(state_.position.data(), state_.velocity.data(), h))
       integrator_->bonds_changed();
-    constraint_work_ += dt * dynamics_->constraint_power();
+    constraint_work_ += h * dynamics_->constraint_power();
     if (config_.damping > 0)
       damping_loss_ +=
-          dt * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
+          h * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
     ++summary_.steps;
     if (const int bad = first_nonfinite(state_); bad >= 0) {
       summary_.status = "nonfinite";
@@ -242,6 +275,8 @@ RunSummary Simulation::run() {
   summary_.peak_rss_mb = peak_rss_mb();
   summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
   summary_.fragments = count_fragments(scene_.families, *model_);
+  summary_.post_steps = static_cast<long>(post_step_->calls());
+  summary_.integrator_statistics = integrator_->statistics();
   write_summary(config_.output.dir + "/summary.json", summary_);
   return summary_;
 }

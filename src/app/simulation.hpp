@@ -1,6 +1,8 @@
 #pragma once
 // The shared run loop: integrator step, checks, output as it goes, summary at the end.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/config.hpp"
 
@@ -24,6 +26,9 @@ struct RunSummary {
   long broken_bonds = 0;  // each pair counted once, initial cracks included
   long fragments = 0;     // connected components of intact bonds at the end
   std::string status = "completed";
+  long post_steps = 0;     // calls of the shared post-step (one per accepted step)
+  std::string integrator;  // integrator.type
+  std::vector<std::pair<std::string, double>> integrator_statistics;
 };
 
 // Runs the scene into config.output.dir. Throws InputError for unusable input and RunError when

@@ -11,6 +11,7 @@ PostStep::PostStep(const Scene& scene, Model& model) : model_(model) {
 }
 
 bool PostStep::run(const double* y, const double* velocity, double dt) {
+  ++calls_;
   model_.update_plasticity(y);
   const bool changed = bond_breaking_ && bond_breaking_->run(y) > 0;
   if (embedded_mesh_) {

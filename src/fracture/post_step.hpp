@@ -21,6 +21,8 @@ class PostStep {
   // φ per particle, or nullptr without fracture.
   const std::vector<double>* damage() const;
   std::size_t broken_bonds() const;
+  // How many times run() was called: one per accepted step, whichever integrator ran.
+  std::size_t calls() const { return calls_; }
   // The embedded tet mesh, or nullptr unless the config writes surfaces or tets.
   EmbeddedMesh* embedded_mesh() { return embedded_mesh_.get(); }
 
@@ -28,6 +30,7 @@ class PostStep {
   Model& model_;
   std::unique_ptr<BondBreaking> bond_breaking_;
   std::unique_ptr<EmbeddedMesh> embedded_mesh_;
+  std::size_t calls_ = 0;
 };
 
 }  // namespace fissure

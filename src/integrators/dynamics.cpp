@@ -1,5 +1,7 @@
 #include "integrators/dynamics.hpp"
 
+#include <algorithm>
+
 namespace fissure {
 
 Dynamics::Dynamics(const Scene& scene, Model& model)
@@ -56,6 +58,52 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
       constraint_power_ -= mass_[i] * a[3 * i + d] * constraints_[c].velocity[d];
       a[3 * i + d] = 0;
     }
+  }
+}
+
+void Dynamics::hold(double t, double* a) const {
+  for (std::size_t k = 0; k < held_particles_.size(); ++k)
+    if (active_constraint(k, t) >= 0)
+      for (int d = 0; d < 3; ++d) a[3 * held_particles_[k] + d] = 0;
+}
+
+void Dynamics::implicit_acceleration(double t, const double* y, const double* v, double* a) {
+  model_.forces(y, force_.data());
+  const int n = static_cast<int>(mass_.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      a[3 * i + k] = force_[3 * i + k] / mass_[i] - damping_ * v[3 * i + k];
+  hold(t, a);
+}
+
+void Dynamics::explicit_acceleration(double t, const double* y, const double* v, double* a) {
+  const int n = static_cast<int>(mass_.size());
+  std::fill(force_.begin(), force_.end(), 0.0);
+  if (colliders_) colliders_->add_forces(y, v, force_.data());
+  if (self_contact_) self_contact_->add_forces(y, force_.data());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) a[3 * i + k] = force_[3 * i + k] / mass_[i] + gravity_[k];
+  hold(t, a);
+}
+
+void Dynamics::external_forces(const double* y, const double* v, double* f) {
+  const int n = static_cast<int>(mass_.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) f[3 * i + k] = mass_[i] * gravity_[k];
+  if (colliders_) colliders_->add_forces(y, v, f);
+  if (self_contact_) self_contact_->add_forces(y, f);
+}
+
+void Dynamics::held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const {
+  particles.clear();
+  velocities.clear();
+  for (std::size_t k = 0; k < held_particles_.size(); ++k) {
+    const int c = active_constraint(k, t);
+    if (c < 0) continue;
+    particles.push_back(held_particles_[k]);
+    velocities.push_back(constraints_[c].velocity);
   }
 }
 

@@ -18,8 +18,21 @@ class Dynamics {
   // a = F_int(y)/m + g − c v, zero where a constraint holds the particle at time t.
   // Also records the power the constraints put in (constraint_power()).
   void acceleration(double t, const double* y, const double* v, double* a);
+  // The same split in two, for implicit–explicit methods: a = implicit + explicit.
+  //   implicit: F_int(y)/m − c v (stiff, elastic);  explicit: g + F_contact(y, v)/m.
+  // Both are zero where a constraint holds the particle at time t.
+  void implicit_acceleration(double t, const double* y, const double* v, double* a);
+  void explicit_acceleration(double t, const double* y, const double* v, double* a);
+  // External forces M g + F_contact(y, v) (colliders and self-contact), 3N, overwritten.
+  void external_forces(const double* y, const double* v, double* f);
   // Sets the velocity of every particle held by a constraint active at time t.
   void constrain_velocity(double t, double* v) const;
+  // The particles a constraint holds at time t and the velocity each one moves at.
+  void held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const;
+  Model& model() { return model_; }
+  const std::vector<double>& mass() const { return mass_; }
+  double damping() const { return damping_; }
+  const double* gravity() const { return gravity_; }
   // Ends a completed step of size h: moves the colliders.
   void end_step(double h);
   // The colliders, or nullptr when the scene has none.
@@ -31,6 +44,8 @@ class Dynamics {
   // The constraint holding particle held_particles_[k] at time t: the last one in config order
   // that contains it and is not yet released, or −1.
   int active_constraint(std::size_t k, double t) const;
+  // Zeroes a where a constraint holds the particle at time t.
+  void hold(double t, double* a) const;
 
   Model& model_;
   std::vector<double> mass_;

@@ -1,10 +1,13 @@
 #pragma once
 // One small interface for every time integrator: advance the state by one step, nothing else.
+// The run loop calls step(), then the shared post-step (plasticity, fracture), then output.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/dynamics.hpp"
+#include "scene/config.hpp"
 
 namespace fissure {
 
@@ -14,16 +17,29 @@ struct State {
   double time = 0;
 };
 
+// Named counters an integrator reports (summary.json "integrator" block).
+using Statistics = std::vector<std::pair<std::string, double>>;
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  // Advances `state` from state.time to state.time + dt.
-  virtual void step(Dynamics& dynamics, State& state, double dt) = 0;
+  // Advances `state` by one step of dt, or of at most dt for an adaptive integrator, and
+  // returns the step taken.
+  virtual double step(Dynamics& dynamics, State& state, double dt) = 0;
   // The bond set changed (fracture): drop anything computed from the old bonds.
   virtual void bonds_changed() {}
+  // True when dt is bounded by the explicit stability limit (notes §4).
+  virtual bool explicit_step() const { return false; }
+  // True when the integrator chooses its own steps; time.dt is then the largest.
+  virtual bool adaptive() const { return false; }
+  virtual Statistics statistics() const { return {}; }
 };
 
-// The integrator registered under `type`; throws InputError naming the valid ones otherwise.
+// The integrator registered under settings.type; throws InputError naming the valid ones
+// otherwise. `file` names the config in error messages.
+std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings,
+                                            const std::string& file);
+// The same with default options.
 std::unique_ptr<Integrator> make_integrator(const std::string& type, const std::string& file);
 std::vector<std::string> integrator_names();
 

@@ -4,7 +4,9 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "integrators/arkode.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/petsc_newton.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "integrators/velocity_verlet.hpp"
 #include "scene/yaml_reader.hpp"
@@ -13,12 +15,19 @@ namespace fissure {
 
 namespace {
 
-using Factory = std::function<std::unique_ptr<Integrator>()>;
+using Factory =
+    std::function<std::unique_ptr<Integrator>(const IntegratorSettings&, const std::string&)>;
 
 const std::vector<std::pair<std::string, Factory>>& registry() {
   static const std::vector<std::pair<std::string, Factory>> entries = {
-      {"symplectic_euler", [] { return std::make_unique<SymplecticEuler>(); }},
-      {"velocity_verlet", [] { return std::make_unique<VelocityVerlet>(); }},
+      {"symplectic_euler", [](auto&, auto&) { return std::make_unique<SymplecticEuler>(); }},
+      {"velocity_verlet", [](auto&, auto&) { return std::make_unique<VelocityVerlet>(); }},
+      {"petsc_newton",
+       [](const IntegratorSettings& s, const std::string& file) {
+         return std::make_unique<PetscNewton>(s, file);
+       }},
+      {"arkode", [](const IntegratorSettings& s,
+                    const std::string& file) { return std::make_unique<Arkode>(s, file); }},
   };
   return entries;
 }
@@ -32,8 +41,16 @@ std::vector<std::string> integrator_names() {
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& type, const std::string& file) {
+  IntegratorSettings settings;
+  settings.type = type;
+  return make_integrator(settings, file);
+}
+
+std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings,
+                                            const std::string& file) {
+  const std::string& type = settings.type;
   for (const auto& [name, factory] : registry())
-    if (name == type) return factory();
+    if (name == type) return factory(settings, file);
   const auto names = integrator_names();
   const std::string hint = nearest(type, names);
   std::string valid;

@@ -2,7 +2,7 @@
 
 namespace fissure {
 
-void SymplecticEuler::step(Dynamics& dynamics, State& state, double dt) {
+double SymplecticEuler::step(Dynamics& dynamics, State& state, double dt) {
   auto& y = state.position;
   auto& v = state.velocity;
   acceleration_.resize(y.size());
@@ -15,6 +15,7 @@ void SymplecticEuler::step(Dynamics& dynamics, State& state, double dt) {
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k) y[k] += dt * v[k];
   state.time = t_end;
+  return dt;
 }
 
 }  // namespace fissure

@@ -6,7 +6,8 @@ namespace fissure {
 
 class SymplecticEuler final : public Integrator {
  public:
-  void step(Dynamics& dynamics, State& state, double dt) override;
+  double step(Dynamics& dynamics, State& state, double dt) override;
+  bool explicit_step() const override { return true; }
 
  private:
   std::vector<double> acceleration_;

@@ -2,7 +2,7 @@
 
 namespace fissure {
 
-void VelocityVerlet::step(Dynamics& dynamics, State& state, double dt) {
+double VelocityVerlet::step(Dynamics& dynamics, State& state, double dt) {
   auto& y = state.position;
   auto& v = state.velocity;
   const std::size_t n = y.size();
@@ -24,6 +24,7 @@ void VelocityVerlet::step(Dynamics& dynamics, State& state, double dt) {
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k) v[k] += half * acceleration_[k];
   dynamics.constrain_velocity(state.time, v.data());
+  return dt;
 }
 
 }  // namespace fissure

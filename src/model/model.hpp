@@ -47,6 +47,7 @@ class Model {
       : particles_(particles), families_(families), materials_(std::move(materials)) {}
   virtual ~Model() = default;
   virtual std::string name() const = 0;
+  const Families& families() const { return families_; }
   // Internal forces F_i = V_i Σ_j (T<j,i> − T<i,j>) V_j (Eq 2 times V_i), 3N, overwritten.
   // Also updates dilatation().
   virtual void forces(const double* y, double* f) = 0;

@@ -312,6 +312,61 @@ TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
   return t;
 }
 
+// Keys shared by all integrators, then those of each type that has options of its own.
+IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) {
+  r.require_map(node, "integrator");
+  IntegratorSettings s;
+  if (node["type"]) s.type = r.string(node["type"], "integrator.type");
+  const std::vector<std::string> petsc = {"scheme", "rho_infinity", "steps", "tangent",
+                                          "petsc_options"};
+  const std::vector<std::string> arkode = {"method", "rtol", "atol", "fixed_step"};
+  std::vector<std::string> allowed = {"type", "allow_unstable_dt"};
+  if (s.type == "petsc_newton") allowed.insert(allowed.end(), petsc.begin(), petsc.end());
+  if (s.type == "arkode") allowed.insert(allowed.end(), arkode.begin(), arkode.end());
+  for (const auto& key : petsc)
+    if (node[key] && s.type != "petsc_newton")
+      r.fail("integrator." + key, fmt::format("is an option of petsc_newton, not of '{}'", s.type));
+  for (const auto& key : arkode)
+    if (node[key] && s.type != "arkode")
+      r.fail("integrator." + key, fmt::format("is an option of arkode, not of '{}'", s.type));
+  r.check_keys(node, "integrator", allowed);
+  if (node["allow_unstable_dt"])
+    s.allow_unstable_dt = r.boolean(node["allow_unstable_dt"], "integrator.allow_unstable_dt");
+  auto one_of = [&](const char* key, std::string& value, const std::vector<std::string>& valid) {
+    if (!node[key]) return;
+    value = r.string(node[key], std::string("integrator.") + key);
+    for (const auto& v : valid)
+      if (v == value) return;
+    std::string list;
+    for (const auto& v : valid) list += (list.empty() ? "" : ", ") + v;
+    const std::string hint = nearest(value, valid);
+    r.fail(std::string("integrator.") + key,
+           fmt::format("unknown value '{}'{} (valid: {})", value,
+                       hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), list));
+  };
+  one_of("scheme", s.scheme, {"backward_euler", "newmark", "alpha", "static"});
+  one_of("tangent", s.tangent, {"majoriser", "exact"});
+  if (node["rho_infinity"]) {
+    s.rho_infinity = r.non_negative(node["rho_infinity"], "integrator.rho_infinity");
+    if (s.rho_infinity > 1)
+      r.fail("integrator.rho_infinity", fmt::format("must be in [0, 1], got {}", s.rho_infinity));
+  }
+  if (node["steps"]) {
+    const double steps = r.positive(node["steps"], "integrator.steps");
+    if (steps != std::floor(steps) || steps > 1e9)
+      r.fail("integrator.steps",
+             fmt::format("must be a whole number of increments, got {}", steps));
+    s.steps = static_cast<int>(steps);
+  }
+  if (node["petsc_options"])
+    s.petsc_options = r.string(node["petsc_options"], "integrator.petsc_options");
+  if (node["method"]) s.method = r.string(node["method"], "integrator.method");
+  if (node["rtol"]) s.rtol = r.positive(node["rtol"], "integrator.rtol");
+  if (node["atol"]) s.atol = r.positive(node["atol"], "integrator.atol");
+  if (node["fixed_step"]) s.fixed_step = r.boolean(node["fixed_step"], "integrator.fixed_step");
+  return s;
+}
+
 Config read_config(const YamlReader& r, const YAML::Node& root) {
   r.check_keys(root, "",
                {"name", "time", "integrator", "gravity", "bodies", "constraints", "initial_cracks",
@@ -321,10 +376,7 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   c.name = root["name"] ? r.string(root["name"], "name")
                         : std::filesystem::path(r.file()).stem().string();
   c.time = read_time(r, root["time"]);
-  if (const auto n = root["integrator"]) {
-    r.check_keys(n, "integrator", {"type"});
-    c.integrator.type = r.string(n["type"], "integrator.type");
-  }
+  if (const auto n = root["integrator"]) c.integrator = read_integrator(r, n);
   if (root["gravity"]) c.gravity = r.vec3(root["gravity"], "gravity");
   const YAML::Node bodies = root["bodies"];
   if (!bodies || !bodies.IsSequence() || bodies.size() == 0)

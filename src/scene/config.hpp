@@ -119,8 +119,21 @@ struct TimeSettings {
   double safety = 0.9;  // factor on the stable estimate when dt is auto
 };
 
+// The time integrator (docs/integrators.md); only the keys of the chosen type may be given.
 struct IntegratorSettings {
   std::string type = "symplectic_euler";
+  bool allow_unstable_dt = false;  // explicit: run even when time.dt exceeds the stable estimate
+  // petsc_newton
+  std::string scheme = "backward_euler";  // backward_euler | newmark | alpha | static
+  double rho_infinity = 0.5;              // alpha: spectral radius at infinite frequency
+  int steps = 1;                          // static: load increments over which loads ramp
+  std::string tangent = "majoriser";      // majoriser | exact
+  std::string petsc_options;              // passed to PETSc untouched, e.g. "-snes_rtol 1e-8"
+  // arkode
+  std::string method = "ARK436L2SA";  // an ARKODE table or IMEX pair by name
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  bool fixed_step = false;  // take steps of exactly time.dt (no error control)
 };
 
 struct OutputSettings {

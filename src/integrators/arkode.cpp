@@ -1,0 +1,171 @@
+#include "integrators/arkode.hpp"
+
+#include <arkode/arkode_arkstep.h>
+#include <fmt/format.h>
+#include <nvector/nvector_serial.h>
+
+#include <algorithm>
+#include <exception>
+
+#include "core/error.hpp"
+#include "integrators/arkode_linear_solver.hpp"
+
+namespace fissure {
+
+struct Arkode::Solver {
+  explicit Solver(Dynamics& d) : dynamics(d) { SUNContext_Create(nullptr, &context); }
+  ~Solver() {
+    ARKStepFree(&memory);
+    if (linear_solver) SUNLinSolFree(linear_solver);
+    N_VDestroy(u);
+    SUNContext_Free(&context);
+  }
+  Dynamics& dynamics;
+  SUNContext context = nullptr;
+  void* memory = nullptr;
+  N_Vector u = nullptr;  // [y; v]
+  SUNLinearSolver linear_solver = nullptr;
+  std::unique_ptr<ReducedNewtonSystem> reduced;
+  std::exception_ptr error;  // an exception raised inside an ARKODE callback
+  double fixed_step = 0;
+  ARKRhsFn explicit_rhs = nullptr, implicit_rhs = nullptr;
+};
+
+namespace {
+
+using Solver = Arkode::Solver;
+using Acceleration = void (Dynamics::*)(double, const double*, const double*, double*);
+
+// u̇ = [v (if with_velocity, else 0); a(t, y, v)] for one part of the right-hand side.
+template <Acceleration part, bool with_velocity>
+int rhs(realtype t, N_Vector u, N_Vector u_dot, void* user_data) {
+  auto* s = static_cast<Solver*>(user_data);
+  try {
+    const std::size_t n = static_cast<std::size_t>(N_VGetLength(u)) / 2;
+    const double* y = N_VGetArrayPointer(u);
+    double* out = N_VGetArrayPointer(u_dot);
+    if constexpr (with_velocity)
+      std::copy(y + n, y + 2 * n, out);
+    else
+      std::fill(out, out + n, 0.0);
+    (s->dynamics.*part)(t, y, y + n, out + n);
+    return 0;
+  } catch (...) {
+    s->error = std::current_exception();
+    return -1;
+  }
+}
+
+void check(int flag, const char* what) {
+  if (flag < 0)
+    throw RunError(fmt::format("ARKODE: {} failed: {}", what, ARKStepGetReturnFlagName(flag)));
+}
+
+}  // namespace
+
+Arkode::Arkode(const IntegratorSettings& settings, const std::string& file)
+    : settings_(settings), file_(file), method_(arkode_method(settings.method, file)) {}
+
+Arkode::~Arkode() = default;
+
+double Arkode::step(Dynamics& dynamics, State& state, double dt) {
+  const std::size_t n = state.position.size();
+  if (!solver_) {
+    solver_ = std::make_unique<Solver>(dynamics);
+    Solver& s = *solver_;
+    s.u = N_VNew_Serial(static_cast<sunindextype>(2 * n), s.context);
+    using K = ArkodeMethod::Kind;
+    switch (method_.kind) {
+      case K::explicit_rk:
+        s.explicit_rhs = rhs<&Dynamics::acceleration, true>;
+        break;
+      case K::implicit_rk:
+        s.implicit_rhs = rhs<&Dynamics::acceleration, true>;
+        break;
+      case K::imex:
+        s.explicit_rhs = rhs<&Dynamics::explicit_acceleration, false>;
+        s.implicit_rhs = rhs<&Dynamics::implicit_acceleration, true>;
+        break;
+    }
+    if (method_.kind != K::explicit_rk && !dynamics.model().has_stiffness())
+      throw InputError(file_, "integrator.method",
+                       fmt::format("'{}' is implicit, and material.model '{}' provides no "
+                                   "stiffness; use material.model: lps or an explicit method",
+                                   method_.name, dynamics.model().name()));
+  }
+  Solver& s = *solver_;
+  if (!s.memory || reinitialise_) {
+    double* u = N_VGetArrayPointer(s.u);
+    std::copy(state.position.begin(), state.position.end(), u);
+    std::copy(state.velocity.begin(), state.velocity.end(), u + n);
+    if (!s.memory) {
+      s.memory = ARKStepCreate(s.explicit_rhs, s.implicit_rhs, state.time, s.u, s.context);
+      if (!s.memory) throw RunError("ARKODE: ARKStepCreate failed");
+      check(ARKStepSetUserData(s.memory, &s), "ARKStepSetUserData");
+      check(ARKStepSetTableNum(s.memory, method_.implicit_table, method_.explicit_table),
+            "ARKStepSetTableNum");
+      check(ARKStepSStolerances(s.memory, settings_.rtol, settings_.atol), "ARKStepSStolerances");
+      check(ARKStepSetMaxNumSteps(s.memory, -1), "ARKStepSetMaxNumSteps");
+      if (s.implicit_rhs) {
+        s.reduced = std::make_unique<ReducedNewtonSystem>(dynamics, s.memory);
+        s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get());
+        check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr), "ARKStepSetLinearSolver");
+        // The majoriser makes Newton converge linearly: allow more than the default 3 iterations.
+        check(ARKStepSetMaxNonlinIters(s.memory, 10), "ARKStepSetMaxNonlinIters");
+      }
+    } else {
+      check(ARKStepReInit(s.memory, s.explicit_rhs, s.implicit_rhs, state.time, s.u),
+            "ARKStepReInit");
+    }
+    s.fixed_step = 0;
+    reinitialise_ = false;
+  }
+  if (settings_.fixed_step && dt != s.fixed_step) {
+    check(ARKStepSetFixedStep(s.memory, dt), "ARKStepSetFixedStep");
+    s.fixed_step = dt;
+  }
+  const double stop = state.time + dt;
+  check(ARKStepSetStopTime(s.memory, stop), "ARKStepSetStopTime");
+  realtype reached = state.time;
+  const int flag = ARKStepEvolve(s.memory, stop, s.u, &reached, ARK_ONE_STEP);
+  if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
+  if (flag < 0)
+    throw RunError(fmt::format(
+        "arkode ({}): the step from t = {:.6g} s failed: {}. Try a looser rtol/atol, a smaller "
+        "time.dt or another method",
+        method_.name, state.time, ARKStepGetReturnFlagName(flag)));
+  const double* u = N_VGetArrayPointer(s.u);
+  std::copy(u, u + n, state.position.begin());
+  std::copy(u + n, u + 2 * n, state.velocity.begin());
+  const double taken = reached - state.time;
+  state.time = reached;
+  return taken;
+}
+
+Statistics Arkode::statistics() const {
+  if (!solver_ || !solver_->memory) return {};
+  void* m = solver_->memory;
+  long steps = 0, attempts = 0, error_failures = 0, explicit_rhs = 0, implicit_rhs = 0;
+  long newton = 0, convergence_failures = 0, setups = 0;
+  ARKStepGetNumSteps(m, &steps);
+  ARKStepGetNumStepAttempts(m, &attempts);
+  ARKStepGetNumErrTestFails(m, &error_failures);
+  ARKStepGetNumRhsEvals(m, &explicit_rhs, &implicit_rhs);
+  Statistics stats = {{"steps", double(steps)},
+                      {"step_attempts", double(attempts)},
+                      {"error_test_failures", double(error_failures)},
+                      {"explicit_rhs_evaluations", double(explicit_rhs)},
+                      {"implicit_rhs_evaluations", double(implicit_rhs)}};
+  if (solver_->reduced) {
+    ARKStepGetNumNonlinSolvIters(m, &newton);
+    ARKStepGetNumNonlinSolvConvFails(m, &convergence_failures);
+    ARKStepGetNumLinSolvSetups(m, &setups);
+    stats.push_back({"newton_iterations", double(newton)});
+    stats.push_back({"newton_convergence_failures", double(convergence_failures)});
+    stats.push_back({"linear_setups", double(setups)});
+    stats.push_back({"factorizations", double(solver_->reduced->factorizations())});
+  }
+  return stats;
+}
+
+}  // namespace fissure

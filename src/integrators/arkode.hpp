@@ -1,0 +1,36 @@
+#pragma once
+// SUNDIALS ARKODE (type: arkode) on the first-order form u = [y; v]: explicit, implicit or
+// implicit–explicit additive Runge–Kutta through ARKStep, adaptive under rtol/atol or at a fixed
+// step. Each call takes one internal step (ARK_ONE_STEP), so the run loop's post-step runs after
+// every accepted internal step; a bond-set change re-initialises ARKODE at the current state.
+#include <memory>
+#include <string>
+
+#include "integrators/arkode_methods.hpp"
+#include "integrators/integrator.hpp"
+
+namespace fissure {
+
+class Arkode final : public Integrator {
+ public:
+  Arkode(const IntegratorSettings& settings, const std::string& file);
+  ~Arkode() override;
+  double step(Dynamics& dynamics, State& state, double dt) override;
+  void bonds_changed() override { reinitialise_ = true; }
+  bool explicit_step() const override {
+    return settings_.fixed_step && method_.kind == ArkodeMethod::Kind::explicit_rk;
+  }
+  bool adaptive() const override { return !settings_.fixed_step; }
+  Statistics statistics() const override;
+
+  struct Solver;  // the SUNDIALS objects
+
+ private:
+  IntegratorSettings settings_;
+  std::string file_;
+  const ArkodeMethod& method_;
+  std::unique_ptr<Solver> solver_;
+  bool reinitialise_ = false;
+};
+
+}  // namespace fissure

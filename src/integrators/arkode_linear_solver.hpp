@@ -1,0 +1,46 @@
+#pragma once
+// A SUNLinearSolver for ARKODE's implicit stages that reduces the first-order Newton system to
+// an SPD one in positions and solves it with CHOLMOD (docs/integrators.md). For u = [y; v] and
+// f_i = [v; M⁻¹F_int(y) − c v], the stage system (I − γJ)Δ = b with J = [[0, I], [−M⁻¹K, −cI]]
+// becomes
+//   (M(1 + γc) + γ²K) Δy = M((1 + γc) b_y + γ b_v),   Δv = (Δy − b_y) / γ,
+// with K the bond-wise majoriser (so the iteration is a modified Newton that always has an SPD
+// matrix). Held particles have v̇ = 0: Δy = b_y + γ b_v there, moved to the right-hand side.
+#include <sundials/sundials_linearsolver.h>
+
+#include <vector>
+
+#include "integrators/dynamics.hpp"
+#include "linear/cholmod_factor.hpp"
+#include "linear/sparse_symmetric.hpp"
+
+namespace fissure {
+
+class ReducedNewtonSystem {
+ public:
+  ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory);
+  // Assembles K at ARKODE's predicted stage and factorizes.
+  void setup();
+  // x = (I − γJ)⁻¹ b, refactorizing first if ARKODE's γ changed since the last factorization.
+  void solve(const double* b, double* x);
+  long factorizations() const { return factor_.factorizations(); }
+
+ private:
+  void factorize(double gamma);
+
+  Dynamics& dynamics_;
+  void* arkode_memory_;
+  SparseSymmetric stiffness_;  // K at the last setup
+  SparseSymmetric system_;     // M(1 + γc) + γ²K with held unknowns taken out, over γ²
+  std::vector<int> diagonal_;
+  std::vector<double> mass_;  // per unknown
+  std::vector<char> fixed_;   // per position unknown: held at the last setup
+  CholmodFactor factor_;
+  double gamma_ = 0;
+  std::vector<double> rhs_, held_step_, coupling_;
+};
+
+// Wraps `system` (not owned) as a matrix-embedded SUNLinearSolver.
+SUNLinearSolver make_reduced_linear_solver(SUNContext context, ReducedNewtonSystem* system);
+
+}  // namespace fissure

@@ -1,0 +1,70 @@
+#include "integrators/newton_system.hpp"
+
+#include "linear/shifted_system.hpp"
+
+namespace fissure {
+
+NewtonSystem::NewtonSystem(Dynamics& dynamics, const std::string& tangent)
+    : dynamics_(dynamics), exact_(tangent == "exact") {
+  const Families& families = dynamics.model().families();
+  matrix_ = exact_ ? two_hop_pattern(families) : bond_pattern(families);
+  diagonal_ = diagonal_positions(matrix_);
+  const auto& m = dynamics.mass();
+  mass_.resize(3 * m.size());
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (int d = 0; d < 3; ++d) mass_[3 * i + d] = m[i];
+  force_.resize(mass_.size());
+  external_.resize(mass_.size());
+}
+
+std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const State& state,
+                                             double h, double load_factor) {
+  inertia_ = scheme.inertia();
+  target_ = scheme.target();
+  dynamics_.external_forces(state.position.data(), state.velocity.data(), external_.data());
+  for (double& f : external_) f *= load_factor;
+  std::vector<double> z = target_;
+  fixed_.assign(z.size(), 0);
+  std::vector<int> held;
+  std::vector<Vec3> velocity;
+  dynamics_.held(state.time, held, velocity);
+  for (std::size_t k = 0; k < held.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      const int u = 3 * held[k] + d;
+      fixed_[u] = 1;
+      z[u] = scheme.held_value(state.position[u], velocity[k][d], h);
+    }
+  return z;
+}
+
+double NewtonSystem::objective(const double* z) {
+  double kinetic = 0, work = 0;
+  const std::size_t n = mass_.size();
+#pragma omp parallel for reduction(+ : kinetic, work) schedule(static)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (fixed_[k]) continue;
+    const double d = z[k] - target_[k];
+    kinetic += mass_[k] * d * d;
+    work += external_[k] * z[k];
+  }
+  return 0.5 * inertia_ * kinetic + dynamics_.model().elastic_energy(z) - work;
+}
+
+void NewtonSystem::residual(const double* z, double* r) {
+  dynamics_.model().forces(z, force_.data());
+  const std::size_t n = mass_.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k)
+    r[k] = fixed_[k] ? 0.0 : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] - external_[k];
+}
+
+void NewtonSystem::hessian(const double* z) {
+  Model& model = dynamics_.model();
+  if (exact_)
+    model.assemble_tangent(z, matrix_);
+  else
+    model.assemble_majoriser(z, matrix_);
+  shift_and_fix(matrix_, diagonal_, mass_, inertia_, fixed_);
+}
+
+}  // namespace fissure

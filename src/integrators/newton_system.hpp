@@ -1,0 +1,40 @@
+#pragma once
+// The nonlinear system of one implicit step, free of any solver library: the incremental
+// potential of implicit_scheme.hpp, its gradient (the residual) and its Hessian, with the
+// particles a constraint holds eliminated (their unknowns fixed at the value they must take).
+#include <vector>
+
+#include "integrators/implicit_scheme.hpp"
+#include "linear/sparse_symmetric.hpp"
+
+namespace fissure {
+
+class NewtonSystem {
+ public:
+  // tangent: "majoriser" (bond_pattern) or "exact" (two_hop_pattern).
+  NewtonSystem(Dynamics& dynamics, const std::string& tangent);
+
+  // Prepares a step of size h from `state`: f = M g + contact at the start of the step, scaled
+  // by `load_factor`; held particles fixed. Returns the starting guess z0.
+  std::vector<double> begin_step(const ImplicitScheme& scheme, const State& state, double h,
+                                 double load_factor);
+  // E(z), ∇E(z) (zero on held unknowns), and ∇²E(z) into matrix().values.
+  double objective(const double* z);
+  void residual(const double* z, double* r);
+  void hessian(const double* z);
+  const SparseSymmetric& matrix() const { return matrix_; }
+
+ private:
+  Dynamics& dynamics_;
+  bool exact_;
+  SparseSymmetric matrix_;
+  std::vector<int> diagonal_;     // index of entry (r, r) in matrix_
+  std::vector<char> fixed_;       // per unknown: held by a constraint
+  std::vector<double> mass_;      // per unknown
+  std::vector<double> external_;  // f
+  std::vector<double> target_;    // ỹ
+  std::vector<double> force_;     // scratch: F_int
+  double inertia_ = 0;
+};
+
+}  // namespace fissure

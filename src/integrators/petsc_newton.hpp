@@ -1,0 +1,30 @@
+#pragma once
+// Implicit integration with PETSc (type: petsc_newton): each step minimises the incremental
+// potential of the chosen scheme (implicit_scheme.hpp) with SNES Newton and a backtracking line
+// search on that potential; the linear solver is KSPPREONLY + PCCHOLESKY with CHOLMOD, and the
+// symbolic factorization is done once for the run (the matrix pattern never changes).
+#include <memory>
+#include <string>
+
+#include "integrators/integrator.hpp"
+
+namespace fissure {
+
+class PetscNewton final : public Integrator {
+ public:
+  PetscNewton(const IntegratorSettings& settings, const std::string& file);
+  ~PetscNewton() override;
+  double step(Dynamics& dynamics, State& state, double dt) override;
+  Statistics statistics() const override;
+  // What PETSc reports of its linear solver (KSPView), e.g. to check the factorization package.
+  std::string solver_view() const;
+
+  struct Solver;  // the PETSc objects
+
+ private:
+  IntegratorSettings settings_;
+  std::string file_;
+  std::unique_ptr<Solver> solver_;
+};
+
+}  // namespace fissure

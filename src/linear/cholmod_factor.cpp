@@ -1,0 +1,32 @@
+#include "linear/cholmod_factor.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "core/error.hpp"
+
+namespace fissure {
+
+void CholmodFactor::factorize(const SparseSymmetric& A) {
+  if (!analyzed_) {
+    matrix_ = Eigen::Map<const Eigen::SparseMatrix<double>>(
+        A.rows, A.rows, static_cast<Eigen::Index>(A.values.size()), A.offsets.data(),
+        A.columns.data(), A.values.data());
+    factor_.analyzePattern(matrix_);
+    analyzed_ = true;
+  }
+  std::copy(A.values.begin(), A.values.end(), matrix_.valuePtr());
+  factor_.factorize(matrix_);
+  ++factorizations_;
+  if (factor_.info() != Eigen::Success)
+    throw RunError(
+        fmt::format("CHOLMOD: the {}×{} system matrix is not positive definite", A.rows, A.rows));
+}
+
+void CholmodFactor::solve(const double* b, double* x) const {
+  const Eigen::Map<const Eigen::VectorXd> rhs(b, matrix_.rows());
+  Eigen::Map<Eigen::VectorXd>(x, matrix_.rows()) = factor_.solve(rhs);
+}
+
+}  // namespace fissure

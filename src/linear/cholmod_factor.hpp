@@ -1,0 +1,27 @@
+#pragma once
+// Sparse Cholesky with CHOLMOD (through Eigen's interface) for a matrix of fixed pattern: the
+// symbolic analysis once, a numeric factorization whenever the values change.
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+
+#include "linear/sparse_symmetric.hpp"
+
+namespace fissure {
+
+class CholmodFactor {
+ public:
+  // Numeric factorization of A (symbolic on the first call). Throws RunError when A is not
+  // positive definite.
+  void factorize(const SparseSymmetric& A);
+  // x = A⁻¹ b.
+  void solve(const double* b, double* x) const;
+  long factorizations() const { return factorizations_; }
+
+ private:
+  Eigen::SparseMatrix<double> matrix_;  // A's pattern; symmetric, so its rows are its columns
+  Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> factor_;
+  bool analyzed_ = false;
+  long factorizations_ = 0;
+};
+
+}  // namespace fissure
