@@ -3,10 +3,12 @@
 // nominal order. Every one is advanced by ARKStep, explicit ones included: SUNDIALS 6.4.1's
 // ERKStep treats any table whose last stage has c = 1 as first-same-as-last and loses up to
 // three orders on some of them (docs/integrators.md).
+// clang-format off
+#include <cstdio>  // first: arkode_butcher.h uses FILE without including <cstdio>
 #include <arkode/arkode_butcher_dirk.h>
 #include <arkode/arkode_butcher_erk.h>
+// clang-format on
 
-#include <cstdio>  // arkode_butcher.h uses FILE without including it
 #include <string>
 #include <vector>
 
