@@ -1,5 +1,7 @@
 #include "integrators/newton_system.hpp"
 
+#include <cmath>
+
 #include "linear/shifted_system.hpp"
 
 namespace fissure {
@@ -45,9 +47,11 @@ double NewtonSystem::objective(const double* z) {
     if (fixed_[k]) continue;
     const double d = z[k] - target_[k];
     kinetic += mass_[k] * d * d;
-    work += external_[k] * z[k];
+    work += external_[k] * d;  // fᵀ(z − ỹ): fᵀz up to a constant, without its cancellation
   }
-  return 0.5 * inertia_ * kinetic + dynamics_.model().elastic_energy(z) - work;
+  const double elastic = dynamics_.model().elastic_energy(z);
+  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic) + std::abs(work);
+  return 0.5 * inertia_ * kinetic + elastic - work;
 }
 
 void NewtonSystem::residual(const double* z, double* r) {

@@ -23,6 +23,9 @@ class NewtonSystem {
   void residual(const double* z, double* r);
   void hessian(const double* z);
   const SparseSymmetric& matrix() const { return matrix_; }
+  // The size of the terms of the last objective() value: changes of E below about 1e-13 of it
+  // are round-off, which no line search can resolve.
+  double objective_magnitude() const { return magnitude_; }
 
  private:
   Dynamics& dynamics_;
@@ -35,6 +38,7 @@ class NewtonSystem {
   std::vector<double> target_;    // ỹ
   std::vector<double> force_;     // scratch: F_int
   double inertia_ = 0;
+  double magnitude_ = 0;
 };
 
 }  // namespace fissure
