@@ -5,13 +5,14 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "linear/shifted_system.hpp"
 
 namespace fissure {
 
 ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory)
     : dynamics_(dynamics), arkode_memory_(arkode_memory) {
-  stiffness_ = bond_pattern(dynamics.model().families());
+  stiffness_ = two_hop_pattern(dynamics.model().families());
   system_ = stiffness_;
   diagonal_ = diagonal_positions(stiffness_);
   const auto& m = dynamics.mass();
@@ -29,7 +30,10 @@ void ReducedNewtonSystem::setup() {
   void* user_data;
   ARKStepGetNonlinearSystemData(arkode_memory_, &t, &predicted, &z, &fi, &gamma, &sdata,
                                 &user_data);
-  dynamics_.model().assemble_majoriser(N_VGetArrayPointer(predicted), stiffness_);
+  const double* y = N_VGetArrayPointer(predicted);
+  predicted_.assign(y, y + mass_.size());
+  dynamics_.model().assemble_tangent(y, stiffness_, false);
+  projected_ = false;
   std::vector<int> held;
   std::vector<Vec3> velocity;
   dynamics_.held(t, held, velocity);
@@ -39,13 +43,24 @@ void ReducedNewtonSystem::setup() {
   factorize(gamma);
 }
 
-// The system over γ²: K + M (1 + γc)/γ², i.e. A = (1 + γc)/γ² in shift_and_fix.
+// The system over γ²: K + M (1 + γc)/γ², i.e. A = (1 + γc)/γ² in shift_and_fix. K is the exact
+// tangent where that is positive definite, else the projected tangent K⁺ (model.hpp).
 void ReducedNewtonSystem::factorize(double gamma) {
   gamma_ = gamma;
-  system_.values = stiffness_.values;
   const double c = dynamics_.damping();
-  shift_and_fix(system_, diagonal_, mass_, (1 + gamma * c) / (gamma * gamma), fixed_);
-  factor_.factorize(system_);
+  auto attempt = [&] {
+    system_.values = stiffness_.values;
+    shift_and_fix(system_, diagonal_, mass_, (1 + gamma * c) / (gamma * gamma), fixed_);
+    factor_.factorize(system_);
+  };
+  try {
+    attempt();
+  } catch (const RunError&) {
+    if (projected_) throw;
+    dynamics_.model().assemble_tangent(predicted_.data(), stiffness_, true);
+    projected_ = true;
+    attempt();
+  }
 }
 
 void ReducedNewtonSystem::solve(const double* b, double* x) {

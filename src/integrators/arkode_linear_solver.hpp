@@ -4,8 +4,9 @@
 // f_i = [v; M⁻¹F_int(y) − c v], the stage system (I − γJ)Δ = b with J = [[0, I], [−M⁻¹K, −cI]]
 // becomes
 //   (M(1 + γc) + γ²K) Δy = M((1 + γc) b_y + γ b_v),   Δv = (Δy − b_y) / γ,
-// with K the bond-wise majoriser (so the iteration is a modified Newton that always has an SPD
-// matrix). Held particles have v̇ = 0: Δy = b_y + γ b_v there, moved to the right-hand side.
+// with K the exact tangent at ARKODE's predicted stage, or the projected tangent K⁺ ⪰ K where
+// the exact one does not give an SPD matrix (model.hpp). Held particles have v̇ = 0: Δy = b_y + γ
+// b_v there, moved to the right-hand side.
 #include <sundials/sundials_linearsolver.h>
 
 #include <vector>
@@ -30,8 +31,10 @@ class ReducedNewtonSystem {
 
   Dynamics& dynamics_;
   void* arkode_memory_;
-  SparseSymmetric stiffness_;  // K at the last setup
-  SparseSymmetric system_;     // M(1 + γc) + γ²K with held unknowns taken out, over γ²
+  SparseSymmetric stiffness_;      // K at the last setup
+  std::vector<double> predicted_;  // the state K was assembled at
+  bool projected_ = false;         // K is K⁺
+  SparseSymmetric system_;         // M(1 + γc) + γ²K with held unknowns taken out, over γ²
   std::vector<int> diagonal_;
   std::vector<double> mass_;  // per unknown
   std::vector<char> fixed_;   // per position unknown: held at the last setup

@@ -56,6 +56,13 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
   }
 }
 
+std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
+  std::vector<double> z(state.position.size());
+  const double step = kind_ == Kind::static_equilibrium ? 0.0 : (1 - alpha_f_) * h;
+  for (std::size_t k = 0; k < z.size(); ++k) z[k] = state.position[k] + step * state.velocity[k];
+  return z;
+}
+
 void ImplicitScheme::correct(const std::vector<double>& z, State& state,
                              std::vector<double>& acceleration, double h) const {
   const std::size_t n = z.size();

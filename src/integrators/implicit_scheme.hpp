@@ -19,8 +19,11 @@ class ImplicitScheme {
   void predict(const State& state, const std::vector<double>& acceleration, double c, double h);
   // The coefficient A of M in the potential (0 for static).
   double inertia() const { return inertia_; }
-  // ỹ, and the starting guess for z.
+  // ỹ.
   const std::vector<double>& target() const { return target_; }
+  // Newton's starting guess, z at constant velocity: ỹ would add h²a_n, which after a sudden
+  // release (a_n large, h large) lands far outside the basin of a good Newton start.
+  std::vector<double> guess(const State& state, double h) const;
   // z of a particle that moves at velocity u through the step (held by a constraint).
   double held_value(double y, double u, double h) const { return y + (1 - alpha_f_) * h * u; }
   // From the minimiser z: y_{n+1}, v_{n+1} into `state` and a_{n+1} into `acceleration`.

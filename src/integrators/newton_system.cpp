@@ -7,9 +7,9 @@
 namespace fissure {
 
 NewtonSystem::NewtonSystem(Dynamics& dynamics, const std::string& tangent)
-    : dynamics_(dynamics), exact_(tangent == "exact") {
+    : dynamics_(dynamics), tangent_(tangent) {
   const Families& families = dynamics.model().families();
-  matrix_ = exact_ ? two_hop_pattern(families) : bond_pattern(families);
+  matrix_ = tangent == "majoriser" ? bond_pattern(families) : two_hop_pattern(families);
   diagonal_ = diagonal_positions(matrix_);
   const auto& m = dynamics.mass();
   mass_.resize(3 * m.size());
@@ -25,7 +25,7 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   target_ = scheme.target();
   dynamics_.external_forces(state.position.data(), state.velocity.data(), external_.data());
   for (double& f : external_) f *= load_factor;
-  std::vector<double> z = target_;
+  std::vector<double> z = scheme.guess(state, h);
   fixed_.assign(z.size(), 0);
   std::vector<int> held;
   std::vector<Vec3> velocity;
@@ -64,10 +64,10 @@ void NewtonSystem::residual(const double* z, double* r) {
 
 void NewtonSystem::hessian(const double* z) {
   Model& model = dynamics_.model();
-  if (exact_)
-    model.assemble_tangent(z, matrix_);
-  else
+  if (tangent_ == "majoriser")
     model.assemble_majoriser(z, matrix_);
+  else
+    model.assemble_tangent(z, matrix_, tangent_ == "projected");
   shift_and_fix(matrix_, diagonal_, mass_, inertia_, fixed_);
 }
 

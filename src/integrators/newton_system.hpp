@@ -11,8 +11,14 @@ namespace fissure {
 
 class NewtonSystem {
  public:
-  // tangent: "majoriser" (bond_pattern) or "exact" (two_hop_pattern).
+  // tangent: "majoriser" (bond-wise, bond_pattern), or on two_hop_pattern "exact", "projected"
+  // (the tangent without compressed bonds' geometric term) or "auto" (either; use_tangent
+  // picks). See model.hpp.
   NewtonSystem(Dynamics& dynamics, const std::string& tangent);
+  // Switches between "exact" and "projected" (same pattern).
+  void use_tangent(const std::string& tangent) {
+    if (tangent_ != "majoriser") tangent_ = tangent;
+  }
 
   // Prepares a step of size h from `state`: f = M g + contact at the start of the step, scaled
   // by `load_factor`; held particles fixed. Returns the starting guess z0.
@@ -29,7 +35,7 @@ class NewtonSystem {
 
  private:
   Dynamics& dynamics_;
-  bool exact_;
+  std::string tangent_;
   SparseSymmetric matrix_;
   std::vector<int> diagonal_;     // index of entry (r, r) in matrix_
   std::vector<char> fixed_;       // per unknown: held by a constraint

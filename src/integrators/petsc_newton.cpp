@@ -36,6 +36,7 @@ struct PetscNewton::Solver {
   std::exception_ptr error;  // an exception raised inside a PETSc callback
   long steps = 0, newton_iterations = 0, linear_solves = 0, line_search_cuts = 0;
   long factorizations = 0, function_evaluations = 0, objective_evaluations = 0;
+  long tangent_fallbacks = 0;  // auto: steps redone with the projected tangent
   bool options_checked = false;
 };
 
@@ -207,22 +208,44 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;
   s.scheme.predict(state, s.acceleration, dynamics.damping(), dt);
   std::vector<double> z = s.system.begin_step(s.scheme, state, dt, load);
-  PetscScalar* x;
-  VecGetArray(s.unknowns, &x);
-  std::copy(z.begin(), z.end(), x);
-  VecRestoreArray(s.unknowns, &x);
-
-  const PetscErrorCode code = SNESSolve(s.snes, nullptr, s.unknowns);
-  if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
-  petsc_check(code, "SNESSolve");
-  PetscInt iterations = 0, linear = 0;
-  SNESGetIterationNumber(s.snes, &iterations);
-  SNESGetLinearSolveIterations(s.snes, &linear);
-  s.newton_iterations += iterations;
-  s.linear_solves += linear;
-  SNESConvergedReason reason;
-  SNESGetConvergedReason(s.snes, &reason);
-  if (reason == SNES_DIVERGED_LINE_SEARCH && at_round_off(s)) reason = SNES_CONVERGED_ITS;
+  // One Newton solve from z with the given tangent; false if PETSc failed (e.g. the tangent
+  // was not positive definite) or Newton did not converge.
+  PetscInt iterations = 0;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  auto solve = [&](const std::string& tangent) {
+    s.system.use_tangent(tangent);
+    PetscScalar* x;
+    VecGetArray(s.unknowns, &x);
+    std::copy(z.begin(), z.end(), x);
+    VecRestoreArray(s.unknowns, &x);
+    const PetscErrorCode code = SNESSolve(s.snes, nullptr, s.unknowns);
+    if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
+    PetscInt linear = 0;
+    SNESGetIterationNumber(s.snes, &iterations);
+    SNESGetLinearSolveIterations(s.snes, &linear);
+    s.newton_iterations += iterations;
+    s.linear_solves += linear;
+    if (code != 0) {
+      reason = SNES_DIVERGED_LINEAR_SOLVE;
+      return false;
+    }
+    SNESGetConvergedReason(s.snes, &reason);
+    if (reason == SNES_DIVERGED_LINE_SEARCH && at_round_off(s)) reason = SNES_CONVERGED_ITS;
+    return reason > 0;
+  };
+  // auto: the exact tangent converges quadratically where A M + K is positive definite; where it
+  // is not, or Newton fails with it, the step is redone with the projected tangent K⁺ ⪰ K.
+  if (settings_.tangent == "auto") {
+    if (!solve("exact")) {
+      ++s.tangent_fallbacks;
+      solve("projected");
+    }
+  } else if (!solve(settings_.tangent) && reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    throw RunError(fmt::format(
+        "petsc_newton ({}): the linear solve failed in the step from t = {:.6g} s: the '{}' "
+        "tangent is not positive definite there; use integrator.tangent: auto or projected",
+        settings_.scheme, state.time, settings_.tangent));
+  }
   if (reason < 0)
     throw RunError(fmt::format(
         "petsc_newton ({}): Newton did not converge in the step from t = {:.6g} s with dt = "
@@ -251,6 +274,7 @@ Statistics PetscNewton::statistics() const {
           {"linear_solves", double(s.linear_solves)},
           {"line_search_cuts", double(s.line_search_cuts)},
           {"factorizations", double(s.factorizations)},
+          {"tangent_fallbacks", double(s.tangent_fallbacks)},
           {"residual_evaluations", double(s.function_evaluations)},
           {"objective_evaluations", double(s.objective_evaluations)}};
 }

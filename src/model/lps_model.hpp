@@ -26,7 +26,7 @@ class LpsModel final : public Model {
   const std::vector<double>& plastic_extension() const override { return plastic_extension_; }
   bool has_stiffness() const override { return true; }
   void assemble_majoriser(const double* y, SparseSymmetric& K) override;
-  void assemble_tangent(const double* y, SparseSymmetric& K) override;
+  void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;
 
  private:
   template <bool Plastic>

@@ -127,8 +127,9 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
 
 // The exact tangent (notes §3): per family, K_i = V_i J_iᵀ H_i J_i with J_iᵀ a = Σ_j a_j n_ij at j
 // and −Σ_j a_j n_ij at i, plus the geometric term. Rows are assembled one particle at a time, each
-// from the families that contain it, so no two threads write to the same row.
-void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K) {
+// from the families that contain it, so no two threads write to the same row. With
+// clamp_compression the geometric term of compressed bonds (p < 0) is left out: K⁺ ⪰ K, K⁺ ⪰ 0.
+void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) {
   update_dilatation(y);
   const int n = particles_.count();
   const auto& off = families_.offsets;
@@ -162,19 +163,15 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K) {
       const int first = K.offsets[3 * r], blocks = (K.offsets[3 * r + 1] - first) / 3;
       for (int k = 0; k < blocks; ++k) block_of[K.columns[first + 3 * k] / 3] = k;
       const int stride = K.offsets[3 * r + 1] - first;  // values per scalar row
-      auto add = [&](int s, double scale, const Vec& a, const Vec& c) {
-        const int k = block_of[s];
-        for (int e = 0; e < 3; ++e)
-          for (int f = 0; f < 3; ++f)
-            K.values[first + e * stride + 3 * k + f] += scale * a[e] * c[f];
-      };
       // Bond terms of row r: V_r B_r ω V_s + V_s B_s ω V_r along n, geometric p/ℓ across.
       for (int b = off[r]; b < off[r + 1]; ++b) {
         const int s = nbr[b];
         const auto g = bond_geometry(y, particles_, r, s, xi[b]);
         const double k =
             V[r] * V[s] * bond_omega_[b] * (terms_[r].deviatoric + terms_[s].deviatoric);
-        const double geometric = g.length > 0 ? pair_force(r, b, g.length) / g.length : 0.0;
+        const double p = g.length > 0 ? pair_force(r, b, g.length) : 0.0;
+        const double geometric =
+            (clamp_compression ? std::max(p, 0.0) : p) / std::max(g.length, 1e-300);
         for (int e = 0; e < 3; ++e)
           for (int f = 0; f < 3; ++f) {
             const double value = (k - geometric) * g.n[e] * g.n[f] + (e == f ? geometric : 0.0);
@@ -201,18 +198,24 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K) {
         const double cw = -V[i] * B / 3.0;
         Vec gc_s, gw_s;
         for (int d = 0; d < 3; ++d) gc_s[d] = -sum_c[i][d], gw_s[d] = -sum_w[i][d];
-        add(i, cc, gc_r, gc_s);
-        add(i, cw, gc_r, gw_s);
-        add(i, cw, gw_r, gc_s);
+        // block (r, s) += gc_r (cc gc_s + cw gw_s)ᵀ + cw gw_r gc_sᵀ
+        auto add_family_block = [&](int s, const Vec& gc_s, const Vec& gw_s) {
+          const int k = block_of[s];
+          for (int e = 0; e < 3; ++e) {
+            double* row = &K.values[first + e * stride + 3 * k];
+            const double a = gc_r[e], w = cw * gw_r[e];
+            for (int f = 0; f < 3; ++f) row[f] += a * (cc * gc_s[f] + cw * gw_s[f]) + w * gc_s[f];
+          }
+        };
+        add_family_block(i, gc_s, gw_s);
         for (int b = off[i]; b < off[i + 1]; ++b) {
           const int s = nbr[b];
+          const double c = bond_weight_[b] * V[s], w = bond_omega_[b] * V[s] * xi[b];
           for (int d = 0; d < 3; ++d) {
-            gc_s[d] = bond_weight_[b] * V[s] * direction[b][d];
-            gw_s[d] = bond_omega_[b] * V[s] * xi[b] * direction[b][d];
+            gc_s[d] = c * direction[b][d];
+            gw_s[d] = w * direction[b][d];
           }
-          add(s, cc, gc_r, gc_s);
-          add(s, cw, gc_r, gw_s);
-          add(s, cw, gw_r, gc_s);
+          add_family_block(s, gc_s, gw_s);
         }
       }
       for (int k = 0; k < blocks; ++k) block_of[K.columns[first + 3 * k] / 3] = -1;

@@ -72,11 +72,14 @@ class Model {
   virtual const std::vector<double>& plastic_extension() const { return no_plastic_extension_; }
   // Stiffness for implicit integrators (notes §3), with e^p frozen, into a matrix of the
   // pattern linear/sparse_symmetric.hpp names: the PSD bond-wise majoriser K^bw ⪰ K
-  // (bond_pattern) and the exact tangent K = ∂²Π/∂y² (two_hop_pattern). Models without them
-  // return false from has_stiffness() and leave K untouched.
+  // (bond_pattern) and the exact tangent K = ∂²Π/∂y² (two_hop_pattern). The tangent's material
+  // part is PSD (the energy is a sum of squares of extensions); only the geometric term of
+  // compressed bonds is indefinite, so with clamp_compression it is dropped, which gives a PSD
+  // matrix K⁺ ⪰ K on the tangent's pattern. Models without them return false from
+  // has_stiffness() and leave K untouched.
   virtual bool has_stiffness() const { return false; }
   virtual void assemble_majoriser(const double*, SparseSymmetric&) {}
-  virtual void assemble_tangent(const double*, SparseSymmetric&) {}
+  virtual void assemble_tangent(const double*, SparseSymmetric&, bool /*clamp_compression*/) {}
   // Bytes stored per directed bond: the families (neighbour, |ξ|, reverse index) and the
   // model's own bond data.
   virtual std::size_t bytes_per_bond() const = 0;

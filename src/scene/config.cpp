@@ -345,7 +345,7 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
                        hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), list));
   };
   one_of("scheme", s.scheme, {"backward_euler", "newmark", "alpha", "static"});
-  one_of("tangent", s.tangent, {"majoriser", "exact"});
+  one_of("tangent", s.tangent, {"auto", "projected", "majoriser", "exact"});
   if (node["rho_infinity"]) {
     s.rho_infinity = r.non_negative(node["rho_infinity"], "integrator.rho_infinity");
     if (s.rho_infinity > 1)

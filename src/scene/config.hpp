@@ -127,7 +127,7 @@ struct IntegratorSettings {
   std::string scheme = "backward_euler";  // backward_euler | newmark | alpha | static
   double rho_infinity = 0.5;              // alpha: spectral radius at infinite frequency
   int steps = 1;                          // static: load increments over which loads ramp
-  std::string tangent = "majoriser";      // majoriser | exact
+  std::string tangent = "auto";           // auto | projected | majoriser | exact
   std::string petsc_options;              // passed to PETSc untouched, e.g. "-snes_rtol 1e-8"
   // arkode
   std::string method = "ARK436L2SA";  // an ARKODE table or IMEX pair by name

@@ -109,7 +109,8 @@ TEST(BadInput, NonFiniteStateStopsWithStepTimeAndParticle) {
                        "output: {every: 1.0e-6, probe_every: 1.0e-6}\n");
   const auto out = dir / "out";
   const auto outcome = test::run_fissure("run " + config.string() + " --out " + out.string() +
-                                         " --set time.dt=1e-2 --set time.end=1.0");
+                                         " --set time.dt=1e-2 --set time.end=1.0" +
+                                         " --set integrator.allow_unstable_dt=true");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("warning: "), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("state became non-finite at step"), std::string::npos)
