@@ -1,7 +1,5 @@
 #include "integrators/arkode_methods.hpp"
 
-#include <fmt/format.h>
-
 #include "core/error.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -32,13 +30,7 @@ const ArkodeMethod& arkode_method(const std::string& name, const std::string& fi
     if (m.name == name || "ARKODE_" + m.name == name) return m;
     names.push_back(m.name);
   }
-  const std::string hint = nearest(name, names);
-  std::string valid;
-  for (const auto& n : names) valid += (valid.empty() ? "" : ", ") + n;
-  throw InputError(
-      file, "integrator.method",
-      fmt::format("unknown ARKODE method '{}'{} (valid: {})", name,
-                  hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), valid));
+  throw InputError(file, "integrator.method", unknown_choice("ARKODE method", name, names));
 }
 
 }  // namespace fissure

@@ -1,7 +1,5 @@
 #include "integrators/dynamics.hpp"
 
-#include <algorithm>
-
 namespace fissure {
 
 Dynamics::Dynamics(const Scene& scene, Model& model)
@@ -78,13 +76,11 @@ void Dynamics::implicit_acceleration(double t, const double* y, const double* v,
 }
 
 void Dynamics::explicit_acceleration(double t, const double* y, const double* v, double* a) {
+  external_forces(y, v, a);
   const int n = static_cast<int>(mass_.size());
-  std::fill(force_.begin(), force_.end(), 0.0);
-  if (colliders_) colliders_->add_forces(y, v, force_.data());
-  if (self_contact_) self_contact_->add_forces(y, force_.data());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) a[3 * i + k] = force_[3 * i + k] / mass_[i] + gravity_[k];
+    for (int k = 0; k < 3; ++k) a[3 * i + k] /= mass_[i];
   hold(t, a);
 }
 

@@ -1,5 +1,3 @@
-#include <fmt/format.h>
-
 #include <functional>
 #include <utility>
 
@@ -51,14 +49,7 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings,
   const std::string& type = settings.type;
   for (const auto& [name, factory] : registry())
     if (name == type) return factory(settings, file);
-  const auto names = integrator_names();
-  const std::string hint = nearest(type, names);
-  std::string valid;
-  for (const auto& n : names) valid += (valid.empty() ? "" : ", ") + n;
-  throw InputError(
-      file, "integrator.type",
-      fmt::format("unknown integrator '{}'{} (valid: {})", type,
-                  hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), valid));
+  throw InputError(file, "integrator.type", unknown_choice("integrator", type, integrator_names()));
 }
 
 }  // namespace fissure

@@ -18,42 +18,39 @@ struct Block {
 
 }  // namespace
 
-void write_particles_vtu(const std::string& path, const std::vector<double>& points,
-                         const std::vector<PointField>& fields, const std::vector<int>* body_id) {
-  const std::size_t n = points.size() / 3;
-  std::vector<std::int32_t> connectivity(n), offsets(n);
-  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
-  for (std::size_t i = 0; i < n; ++i) {
-    connectivity[i] = static_cast<std::int32_t>(i);
-    offsets[i] = static_cast<std::int32_t>(i + 1);
-  }
+void write_vtu(const std::string& path, const std::vector<double>& points,
+               const std::vector<std::int32_t>& connectivity, int corners, std::uint8_t vtk_type,
+               const std::vector<VtuArray>& point_data, const std::vector<VtuArray>& cell_data) {
+  const std::size_t cells = connectivity.size() / corners;
+  std::vector<std::int32_t> offsets(cells);
+  for (std::size_t c = 0; c < cells; ++c) offsets[c] = static_cast<std::int32_t>((c + 1) * corners);
+  const std::vector<std::uint8_t> types(cells, vtk_type);
   std::vector<Block> blocks;
   std::uint64_t offset = 0;
   std::string header = fmt::format(
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
       "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n"
-      "<Piece NumberOfPoints=\"{0}\" NumberOfCells=\"{0}\">\n",
-      n);
-  auto array = [&](const char* type, const std::string& name, int components, const void* data,
-                   std::uint64_t bytes) {
+      "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+      points.size() / 3, cells);
+  auto array = [&](const VtuArray& a) {
     header += fmt::format(
         "<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" "
         "offset=\"{}\"/>\n",
-        type, name, components, offset);
-    blocks.push_back({data, bytes});
-    offset += sizeof(std::uint64_t) + bytes;
+        a.type, a.name, a.components, offset);
+    blocks.push_back({a.data, a.bytes});
+    offset += sizeof(std::uint64_t) + a.bytes;
   };
   header += "<Points>\n";
-  array("Float64", "position", 3, points.data(), points.size() * sizeof(double));
+  array({"Float64", "position", 3, points.data(), points.size() * sizeof(double)});
   header += "</Points>\n<Cells>\n";
-  array("Int32", "connectivity", 1, connectivity.data(), n * sizeof(std::int32_t));
-  array("Int32", "offsets", 1, offsets.data(), n * sizeof(std::int32_t));
-  array("UInt8", "types", 1, types.data(), n);
+  array({"Int32", "connectivity", 1, connectivity.data(), connectivity.size() * 4});
+  array({"Int32", "offsets", 1, offsets.data(), offsets.size() * 4});
+  array({"UInt8", "types", 1, types.data(), types.size()});
   header += "</Cells>\n<PointData>\n";
-  for (const auto& f : fields)
-    array("Float64", f.name, f.components, f.values->data(), f.values->size() * sizeof(double));
-  if (body_id) array("Int32", "body", 1, body_id->data(), body_id->size() * sizeof(int));
-  header += "</PointData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  for (const auto& a : point_data) array(a);
+  header += "</PointData>\n<CellData>\n";
+  for (const auto& a : cell_data) array(a);
+  header += "</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
   write_atomically(path, [&](std::ostream& out) {
     out << header;
     for (const auto& b : blocks) {
@@ -62,6 +59,20 @@ void write_particles_vtu(const std::string& path, const std::vector<double>& poi
     }
     out << "\n</AppendedData>\n</VTKFile>\n";
   });
+}
+
+void write_particles_vtu(const std::string& path, const std::vector<double>& points,
+                         const std::vector<PointField>& fields, const std::vector<int>* body_id) {
+  const std::size_t n = points.size() / 3;
+  std::vector<std::int32_t> connectivity(n);
+  for (std::size_t i = 0; i < n; ++i) connectivity[i] = static_cast<std::int32_t>(i);
+  std::vector<VtuArray> point_data;
+  for (const auto& f : fields)
+    point_data.push_back(
+        {"Float64", f.name, f.components, f.values->data(), f.values->size() * sizeof(double)});
+  if (body_id)
+    point_data.push_back({"Int32", "body", 1, body_id->data(), body_id->size() * sizeof(int)});
+  write_vtu(path, points, connectivity, 1, 1 /* VTK_VERTEX */, point_data, {});
 }
 
 void PvdIndex::add(double time, const std::string& relative_file) {

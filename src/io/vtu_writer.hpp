@@ -1,6 +1,7 @@
 #pragma once
 // Particle frames as VTK unstructured grids (one vertex cell per particle), binary appended,
 // readable by ParaView.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,22 @@ struct PointField {
   const std::vector<double>* values;  // components * point count
 };
 
+// One data array of a grid: a VTK type name ("Float64", "Int32"), its components, its bytes.
+struct VtuArray {
+  std::string type;
+  std::string name;
+  int components;
+  const void* data;
+  std::uint64_t bytes;
+};
+
+// An unstructured grid of `points` (xyz) and cells of `corners` points each, of VTK cell type
+// `vtk_type`, with per-point and per-cell arrays; binary, appended raw, written atomically.
+void write_vtu(const std::string& path, const std::vector<double>& points,
+               const std::vector<std::int32_t>& connectivity, int corners, std::uint8_t vtk_type,
+               const std::vector<VtuArray>& point_data, const std::vector<VtuArray>& cell_data);
+
+// Particles as vertex cells.
 void write_particles_vtu(const std::string& path, const std::vector<double>& points,
                          const std::vector<PointField>& fields,
                          const std::vector<int>* body_id = nullptr);

@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "io/atomic_file.hpp"
+#include "io/vtu_writer.hpp"
 #include "mesh/surface_extract.hpp"
 
 namespace fissure {
@@ -32,59 +33,12 @@ CellArrays cell_arrays(const EmbeddedMesh& mesh, const std::vector<int>& tets,
   return a;
 }
 
-struct IntField {
-  const char* name;
-  const std::vector<std::int32_t>* values;
-};
+VtuArray damage_array(const CellArrays& a) {
+  return {"Float64", "damage", 1, a.damage.data(), a.damage.size() * sizeof(double)};
+}
 
-// An unstructured grid of `points` (xyz) and cells of `corners` points each (VTK type
-// `vtk_type`), with per-cell `damage` and integer fields; binary, appended raw.
-void write_cells_vtu(const std::string& path, const std::vector<double>& points,
-                     const std::vector<std::int32_t>& connectivity, int corners,
-                     std::uint8_t vtk_type, const std::vector<double>& damage,
-                     const std::vector<IntField>& int_fields) {
-  const std::size_t cells = connectivity.size() / corners;
-  std::vector<std::int32_t> offsets(cells);
-  for (std::size_t c = 0; c < cells; ++c) offsets[c] = static_cast<std::int32_t>((c + 1) * corners);
-  const std::vector<std::uint8_t> types(cells, vtk_type);
-  struct Block {
-    const void* data;
-    std::uint64_t bytes;
-  };
-  std::vector<Block> blocks;
-  std::uint64_t offset = 0;
-  std::string header = fmt::format(
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
-      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n"
-      "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-      points.size() / 3, cells);
-  auto array = [&](const char* type, const char* name, int components, const void* data,
-                   std::uint64_t bytes) {
-    header += fmt::format(
-        "<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" "
-        "offset=\"{}\"/>\n",
-        type, name, components, offset);
-    blocks.push_back({data, bytes});
-    offset += sizeof(std::uint64_t) + bytes;
-  };
-  header += "<Points>\n";
-  array("Float64", "position", 3, points.data(), points.size() * sizeof(double));
-  header += "</Points>\n<Cells>\n";
-  array("Int32", "connectivity", 1, connectivity.data(), connectivity.size() * 4);
-  array("Int32", "offsets", 1, offsets.data(), offsets.size() * 4);
-  array("UInt8", "types", 1, types.data(), types.size());
-  header += "</Cells>\n<CellData>\n";
-  array("Float64", "damage", 1, damage.data(), damage.size() * sizeof(double));
-  for (const IntField& f : int_fields) array("Int32", f.name, 1, f.values->data(), cells * 4);
-  header += "</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
-  write_atomically(path, [&](std::ostream& out) {
-    out << header;
-    for (const Block& b : blocks) {
-      out.write(reinterpret_cast<const char*>(&b.bytes), sizeof(b.bytes));
-      out.write(static_cast<const char*>(b.data), static_cast<std::streamsize>(b.bytes));
-    }
-    out << "\n</AppendedData>\n</VTKFile>\n";
-  });
+VtuArray int_array(const char* name, const std::vector<std::int32_t>& values) {
+  return {"Int32", name, 1, values.data(), values.size() * sizeof(std::int32_t)};
 }
 
 // The surface's vertices renumbered 0.. in order of first use.
@@ -143,8 +97,8 @@ void SurfaceWriter::write(int frame, double time, const EmbeddedMesh& mesh,
     const CellArrays cells = cell_arrays(mesh, s.tet, damage, body);
     const std::vector<std::int32_t> crack(s.crack.begin(), s.crack.end());
     const std::string name = fmt::format("surface_{:06d}", frame);
-    write_cells_vtu(dir_ + "/" + name + ".vtu", c.points, c.triangles, 3, 5, cells.damage,
-                    {{"body", &cells.body}, {"crack", &crack}});
+    write_vtu(dir_ + "/" + name + ".vtu", c.points, c.triangles, 3, 5 /* VTK_TRIANGLE */, {},
+              {damage_array(cells), int_array("body", cells.body), int_array("crack", crack)});
     write_obj(dir_ + "/" + name + ".obj", c, s, time);
     surface_pvd_.add(time, name + ".vtu");
   }
@@ -154,8 +108,8 @@ void SurfaceWriter::write(int frame, double time, const EmbeddedMesh& mesh,
     const CellArrays cells = cell_arrays(mesh, all, damage, body);
     const std::vector<std::int32_t> corners(m.mesh.tets.begin(), m.mesh.tets.end());
     const std::string name = fmt::format("tets_{:06d}.vtu", frame);
-    write_cells_vtu(dir_ + "/" + name, m.position, corners, 4, 10, cells.damage,
-                    {{"body", &cells.body}});
+    write_vtu(dir_ + "/" + name, m.position, corners, 4, 10 /* VTK_TETRA */, {},
+              {damage_array(cells), int_array("body", cells.body)});
     tets_pvd_.add(time, name);
   }
 }

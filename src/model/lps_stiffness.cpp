@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "linear/sparse_symmetric.hpp"
 #include "model/lps_model.hpp"
@@ -79,17 +80,20 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
   const auto& V = particles_.volume;
-  struct RowBound {
-    double a, q, sum_c, sum_r;
-  };
-  std::vector<RowBound> bound(n);
+  // h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond
+  // b, for every directed bond: a bond's stiffness is h_ij + h_ji.
+  std::vector<double> h(families_.directed_bonds());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double m = weighted_volume_[i], B = terms_[i].deviatoric;
+    // c̄_ij and r_ij = c̄_ij − 3 ω_ij |ξ_ij| V_j / m_i
+    auto weights = [&](int b) {
+      const double c = bond_weight_[b] * V[nbr[b]];
+      return std::pair{c, m > 0 ? c - 3.0 * bond_omega_[b] * xi[b] * V[nbr[b]] / m : 0.0};
+    };
     double sum_c = 0, sum_r = 0, norm_c = 0, norm_r = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double c = bond_weight_[b] * V[nbr[b]];
-      const double r = m > 0 ? c - 3.0 * bond_omega_[b] * xi[b] * V[nbr[b]] / m : 0.0;
+      const auto [c, r] = weights(b);
       sum_c += std::abs(c);
       sum_r += std::abs(r);
       norm_c += c * c;
@@ -97,18 +101,13 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
     }
     const double eps = norm_c > 0 ? std::min(1.0, std::sqrt(norm_r / norm_c)) : 1.0;
     const double a = std::max(0.0, materials_.bulk_modulus[i] - (1.0 - eps) * B * m / 9.0);
-    bound[i] = {a, eps > 0 ? B * m / (9.0 * eps) : 0.0, sum_c, sum_r};
+    const double q = eps > 0 ? B * m / (9.0 * eps) : 0.0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const auto [c, r] = weights(b);
+      h[b] = V[i] *
+             (B * bond_omega_[b] * V[nbr[b]] + a * sum_c * std::abs(c) + q * sum_r * std::abs(r));
+    }
   }
-  // h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond b.
-  auto row_stiffness = [&](int i, std::size_t b) {
-    const int j = nbr[b];
-    const double c = bond_weight_[b] * V[j];
-    const double m = weighted_volume_[i];
-    const double r = m > 0 ? c - 3.0 * bond_omega_[b] * xi[b] * V[j] / m : 0.0;
-    const RowBound& h = bound[i];
-    return V[i] * (terms_[i].deviatoric * bond_omega_[b] * V[j] + h.a * h.sum_c * std::abs(c) +
-                   h.q * h.sum_r * std::abs(r));
-  };
   std::fill(K.values.begin(), K.values.end(), 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -116,7 +115,7 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       const auto g = bond_geometry(y, particles_, i, j, xi[b]);
-      const double k = row_stiffness(i, b) + row_stiffness(j, families_.reverse[b]);
+      const double k = h[b] + h[families_.reverse[b]];
       const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
       const int k_index = b - off[i];
       scatter_bond(K, i, self, k_index + (k_index >= self ? 1 : 0), g.n, k,
@@ -137,18 +136,18 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
   const auto& rev = families_.reverse;
   const auto& xi = families_.reference_length;
   const auto& V = particles_.volume;
-  // Per family: Σ_j c̄_ij n_ij and Σ_j w_ij n_ij, and the bond directions.
+  // Per family: Σ_j c̄_ij n_ij and Σ_j w_ij n_ij; per bond: n and ℓ.
   std::vector<Vec> sum_c(n), sum_w(n);
-  std::vector<Vec> direction(families_.directed_bonds());
+  std::vector<BondGeometry> geometry(families_.directed_bonds());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     Vec sc{}, sw{};
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
-      direction[b] = bond_geometry(y, particles_, i, j, xi[b]).n;
+      geometry[b] = bond_geometry(y, particles_, i, j, xi[b]);
       for (int d = 0; d < 3; ++d) {
-        sc[d] += bond_weight_[b] * V[j] * direction[b][d];
-        sw[d] += bond_omega_[b] * V[j] * xi[b] * direction[b][d];
+        sc[d] += bond_weight_[b] * V[j] * geometry[b].n[d];
+        sw[d] += bond_omega_[b] * V[j] * xi[b] * geometry[b].n[d];
       }
     }
     sum_c[i] = sc;
@@ -166,18 +165,12 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
       // Bond terms of row r: V_r B_r ω V_s + V_s B_s ω V_r along n, geometric p/ℓ across.
       for (int b = off[r]; b < off[r + 1]; ++b) {
         const int s = nbr[b];
-        const auto g = bond_geometry(y, particles_, r, s, xi[b]);
+        const BondGeometry& g = geometry[b];
         const double k =
             V[r] * V[s] * bond_omega_[b] * (terms_[r].deviatoric + terms_[s].deviatoric);
         const double p = g.length > 0 ? pair_force(r, b, g.length) : 0.0;
-        const double geometric =
-            (clamp_compression ? std::max(p, 0.0) : p) / std::max(g.length, 1e-300);
-        for (int e = 0; e < 3; ++e)
-          for (int f = 0; f < 3; ++f) {
-            const double value = (k - geometric) * g.n[e] * g.n[f] + (e == f ? geometric : 0.0);
-            K.values[first + e * stride + 3 * block_of[r] + f] += value;
-            K.values[first + e * stride + 3 * block_of[s] + f] -= value;
-          }
+        scatter_bond(K, r, block_of[r], block_of[s], g.n, k,
+                     (clamp_compression ? std::max(p, 0.0) : p) / std::max(g.length, 1e-300));
       }
       // Family terms of every family containing r: its own (i = r) and its members'.
       for (int q = off[r] - 1; q < off[r + 1]; ++q) {
@@ -189,8 +182,8 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
         } else {
           const int b = rev[q];  // bond i → r in row i
           for (int d = 0; d < 3; ++d) {
-            gc_r[d] = bond_weight_[b] * V[r] * direction[b][d];
-            gw_r[d] = bond_omega_[b] * V[r] * xi[b] * direction[b][d];
+            gc_r[d] = bond_weight_[b] * V[r] * geometry[b].n[d];
+            gw_r[d] = bond_omega_[b] * V[r] * xi[b] * geometry[b].n[d];
           }
         }
         const double B = terms_[i].deviatoric;
@@ -212,8 +205,8 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
           const int s = nbr[b];
           const double c = bond_weight_[b] * V[s], w = bond_omega_[b] * V[s] * xi[b];
           for (int d = 0; d < 3; ++d) {
-            gc_s[d] = c * direction[b][d];
-            gw_s[d] = w * direction[b][d];
+            gc_s[d] = c * geometry[b].n[d];
+            gw_s[d] = w * geometry[b].n[d];
           }
           add_family_block(s, gc_s, gw_s);
         }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -335,14 +336,8 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
   auto one_of = [&](const char* key, std::string& value, const std::vector<std::string>& valid) {
     if (!node[key]) return;
     value = r.string(node[key], std::string("integrator.") + key);
-    for (const auto& v : valid)
-      if (v == value) return;
-    std::string list;
-    for (const auto& v : valid) list += (list.empty() ? "" : ", ") + v;
-    const std::string hint = nearest(value, valid);
-    r.fail(std::string("integrator.") + key,
-           fmt::format("unknown value '{}'{} (valid: {})", value,
-                       hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), list));
+    if (std::find(valid.begin(), valid.end(), value) == valid.end())
+      r.fail(std::string("integrator.") + key, unknown_choice(key, value, valid));
   };
   one_of("scheme", s.scheme, {"backward_euler", "newmark", "alpha", "static"});
   one_of("tangent", s.tangent, {"auto", "projected", "majoriser", "exact"});

@@ -38,6 +38,15 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
   return best;
 }
 
+std::string unknown_choice(const std::string& what, const std::string& value,
+                           const std::vector<std::string>& valid) {
+  const std::string hint = nearest(value, valid);
+  std::string list;
+  for (const auto& v : valid) list += (list.empty() ? "" : ", ") + v;
+  return fmt::format("unknown {} '{}'{} (valid: {})", what, value,
+                     hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), list);
+}
+
 void YamlReader::fail(const std::string& key, const std::string& reason) const {
   throw InputError(file_, key, reason);
 }

@@ -55,65 +55,43 @@ std::vector<double> static_shape(Anchored& a) {
   return s.position;
 }
 
-struct Case {
-  IntegratorSettings settings;
-  bool dissipative;  // energy never grows, and the bar settles
-  std::string label;
-};
-
+// 200 backward-Euler steps at 100× the estimate: finite throughout, the energy never grows (1e-9
+// relative slack for the Newton tolerance) and the bar comes to rest in the static shape (1e-6
+// of the largest displacement, the Newton tolerance: backward Euler shrinks every mode by
+// 1/√(1 + (ωh)²) each step; measured 1.5e-10).
 // Newmark, generalized-α and ARKODE's SDIRK do not yet converge at this step on this case: near
 // buckling the compressed bar's tangent is indefinite and the projected one converges too slowly
 // (docs/integrators.md, open items).
-std::vector<Case> cases() {
-  IntegratorSettings be;
-  be.type = "petsc_newton";
-  be.scheme = "backward_euler";
-  return {{be, true, "backward_euler"}};
-}
-
-class LargeStep : public ::testing::TestWithParam<Case> {};
-
-// 200 steps at 100× the estimate: finite throughout; backward Euler, generalized-α with ρ∞ = 0
-// and the L-stable SDIRK never gain energy (1e-9 relative slack for the solver tolerance) and
-// come to rest in the static shape (1% of the largest displacement: the slowest mode is damped
-// by more than 1e6 over the run); Newmark, which conserves energy in the linear limit, stays
-// within 5% of the initial energy.
-TEST_P(LargeStep, HundredTimesTheExplicitLimit) {
-  const Case& c = GetParam();
+TEST(LargeStep, BackwardEulerAtHundredTimesTheExplicitLimit) {
   auto a = anchored_bar();
   const double dt = 100 * a->model->stable_time_step();
-  auto integrator = make_integrator(c.settings, "test");
+  IntegratorSettings settings;
+  settings.type = "petsc_newton";
+  settings.scheme = "backward_euler";
+  auto integrator = make_integrator(settings, "test");
   State s = a->initial;
   const double e0 = energy(*a, s);
-  double previous = e0, worst_growth = 0, worst_deviation = 0;
+  double previous = e0, worst_growth = 0;
   for (int step = 0; step < 200; ++step) {
     integrator->step(*a->dynamics, s, dt);
     for (double y : s.position) ASSERT_TRUE(std::isfinite(y)) << "step " << step;
     const double e = energy(*a, s);
     worst_growth = std::max(worst_growth, (e - previous) / e0);
-    worst_deviation = std::max(worst_deviation, std::abs(e - e0) / e0);
     previous = e;
   }
   const auto rest = static_shape(*a);
   const double distance = test::max_difference(s.position, rest);
   const double reach = test::max_difference(a->initial.position, rest);
   std::printf(
-      "%s at dt = %.3g s (100x): max energy growth per step %.2e E0, max |E - E0| %.3f E0, "
-      "final E %.2e E0, distance to static shape %.2e of the largest displacement\n",
-      c.label.c_str(), dt, worst_growth, worst_deviation, previous / e0, distance / reach);
+      "backward Euler at dt = %.3g s (100x): max energy growth per step %.2e E0, final E %.2e "
+      "E0, distance to static shape %.2e of the largest displacement\n",
+      dt, worst_growth, previous / e0, distance / reach);
   for (const auto& [name, value] : integrator->statistics())
     std::printf("  %s %.0f", name.c_str(), value);
   std::printf("\n");
-  if (c.dissipative) {
-    EXPECT_LT(worst_growth, 1e-9);
-    EXPECT_LT(distance, 0.01 * reach);
-  } else {
-    EXPECT_LT(worst_deviation, 0.05);
-  }
+  EXPECT_LT(worst_growth, 1e-9);
+  EXPECT_LT(distance, 1e-6 * reach);
 }
-
-INSTANTIATE_TEST_SUITE_P(Implicit, LargeStep, ::testing::ValuesIn(cases()),
-                         [](const auto& info) { return info.param.label; });
 
 }  // namespace
 }  // namespace fissure
