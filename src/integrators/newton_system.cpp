@@ -25,7 +25,10 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   target_ = scheme.target();
   dynamics_.external_forces(state.position.data(), state.velocity.data(), external_.data());
   for (double& f : external_) f *= load_factor;
+  // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
+  // ωh ≫ 1 at large steps carry large velocities), from y: whichever has the lower potential.
   std::vector<double> z = scheme.guess(state, h);
+  std::vector<double> stay = state.position;
   fixed_.assign(z.size(), 0);
   std::vector<int> held;
   std::vector<Vec3> velocity;
@@ -34,9 +37,9 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
     for (int d = 0; d < 3; ++d) {
       const int u = 3 * held[k] + d;
       fixed_[u] = 1;
-      z[u] = scheme.held_value(state.position[u], velocity[k][d], h);
+      z[u] = stay[u] = scheme.held_value(state.position[u], velocity[k][d], h);
     }
-  return z;
+  return objective(stay.data()) < objective(z.data()) ? stay : z;
 }
 
 double NewtonSystem::objective(const double* z) {
