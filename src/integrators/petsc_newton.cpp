@@ -4,14 +4,18 @@
 #include <petscsnes.h>
 
 #include <algorithm>
-#include <cstring>
 #include <exception>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "core/error.hpp"
 #include "integrators/newton_system.hpp"
 #include "integrators/petsc_session.hpp"
 
 namespace fissure {
+
+namespace fs = std::filesystem;
 
 struct PetscNewton::Solver {
   Solver(Dynamics& dynamics, const IntegratorSettings& settings)
@@ -281,15 +285,20 @@ Statistics PetscNewton::statistics() const {
 
 std::string PetscNewton::solver_view() const {
   if (!solver_) return {};
-  std::string text(1 << 16, '\0');
-  PetscViewer viewer;
+  // PETSc's string viewer abbreviates; its ASCII viewer writes the full report to a file.
+  const fs::path path = fs::temp_directory_path() /
+                        fmt::format("fissure_kspview_{}.txt", static_cast<const void*>(this));
   KSP ksp;
+  PetscViewer viewer;
   SNESGetKSP(solver_->snes, &ksp);
-  PetscViewerStringOpen(PETSC_COMM_SELF, text.data(), text.size(), &viewer);
+  PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer);
   KSPView(ksp, viewer);
   PetscViewerDestroy(&viewer);
-  text.resize(std::strlen(text.c_str()));
-  return text;
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  fs::remove(path);
+  return text.str();
 }
 
 }  // namespace fissure
