@@ -23,7 +23,11 @@ struct Arkode::Solver {
   Dynamics& dynamics;
   SUNContext context = nullptr;
   void* memory = nullptr;
-  N_Vector u = nullptr;  // [y; v]
+  N_Vector u = nullptr;  // [y − origin; v]
+  // The positions at the first step: ARKODE integrates the displacement from them, so rtol
+  // weighs the motion rather than the distance from the coordinate origin.
+  std::vector<double> origin;
+  std::vector<double> position;  // origin + u's first half, for the right-hand sides
   SUNLinearSolver linear_solver = nullptr;
   std::unique_ptr<ReducedNewtonSystem> reduced;
   std::exception_ptr error;  // an exception raised inside an ARKODE callback
@@ -41,14 +45,16 @@ template <Acceleration part, bool with_velocity>
 int rhs(realtype t, N_Vector u, N_Vector u_dot, void* user_data) {
   auto* s = static_cast<Solver*>(user_data);
   try {
-    const std::size_t n = static_cast<std::size_t>(N_VGetLength(u)) / 2;
-    const double* y = N_VGetArrayPointer(u);
+    const std::size_t n = s->origin.size();
+    const double* displacement = N_VGetArrayPointer(u);
+    const double* v = displacement + n;
     double* out = N_VGetArrayPointer(u_dot);
+    for (std::size_t k = 0; k < n; ++k) s->position[k] = s->origin[k] + displacement[k];
     if constexpr (with_velocity)
-      std::copy(y + n, y + 2 * n, out);
+      std::copy(v, v + n, out);
     else
       std::fill(out, out + n, 0.0);
-    (s->dynamics.*part)(t, y, y + n, out + n);
+    (s->dynamics.*part)(t, s->position.data(), v, out + n);
     return 0;
   } catch (...) {
     s->error = std::current_exception();
@@ -74,6 +80,8 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
     solver_ = std::make_unique<Solver>(dynamics);
     Solver& s = *solver_;
     s.u = N_VNew_Serial(static_cast<sunindextype>(2 * n), s.context);
+    s.origin = state.position;
+    s.position.resize(n);
     using K = ArkodeMethod::Kind;
     switch (method_.kind) {
       case K::explicit_rk:
@@ -96,7 +104,7 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
   Solver& s = *solver_;
   if (!s.memory || reinitialise_) {
     double* u = N_VGetArrayPointer(s.u);
-    std::copy(state.position.begin(), state.position.end(), u);
+    for (std::size_t k = 0; k < n; ++k) u[k] = state.position[k] - s.origin[k];
     std::copy(state.velocity.begin(), state.velocity.end(), u + n);
     if (!s.memory) {
       s.memory = ARKStepCreate(s.explicit_rhs, s.implicit_rhs, state.time, s.u, s.context);
@@ -107,7 +115,7 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
       check(ARKStepSStolerances(s.memory, settings_.rtol, settings_.atol), "ARKStepSStolerances");
       check(ARKStepSetMaxNumSteps(s.memory, -1), "ARKStepSetMaxNumSteps");
       if (s.implicit_rhs) {
-        s.reduced = std::make_unique<ReducedNewtonSystem>(dynamics, s.memory);
+        s.reduced = std::make_unique<ReducedNewtonSystem>(dynamics, s.memory, s.origin);
         s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get());
         check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr), "ARKStepSetLinearSolver");
         // The majoriser makes Newton converge linearly: allow more than the default 3 iterations.
@@ -135,11 +143,18 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         "time.dt or another method",
         method_.name, state.time, ARKStepGetReturnFlagName(flag)));
   const double* u = N_VGetArrayPointer(s.u);
-  std::copy(u, u + n, state.position.begin());
+  for (std::size_t k = 0; k < n; ++k) state.position[k] = s.origin[k] + u[k];
   std::copy(u + n, u + 2 * n, state.velocity.begin());
   const double taken = reached - state.time;
   state.time = reached;
   return taken;
+}
+
+void Arkode::set_tolerances(double rtol, double atol) {
+  settings_.rtol = rtol;
+  settings_.atol = atol;
+  if (solver_ && solver_->memory)
+    check(ARKStepSStolerances(solver_->memory, rtol, atol), "ARKStepSStolerances");
 }
 
 Statistics Arkode::statistics() const {

@@ -22,6 +22,8 @@ class Arkode final : public Integrator {
   }
   bool adaptive() const override { return !settings_.fixed_step; }
   Statistics statistics() const override;
+  // New tolerances for the following steps (adaptive runs), e.g. to tighten them mid-run.
+  void set_tolerances(double rtol, double atol);
 
   struct Solver;  // the SUNDIALS objects
 

@@ -10,8 +10,9 @@
 
 namespace fissure {
 
-ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory)
-    : dynamics_(dynamics), arkode_memory_(arkode_memory) {
+ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory,
+                                         const std::vector<double>& origin)
+    : dynamics_(dynamics), arkode_memory_(arkode_memory), origin_(origin) {
   stiffness_ = two_hop_pattern(dynamics.model().families());
   system_ = stiffness_;
   diagonal_ = diagonal_positions(stiffness_);
@@ -30,9 +31,10 @@ void ReducedNewtonSystem::setup() {
   void* user_data;
   ARKStepGetNonlinearSystemData(arkode_memory_, &t, &predicted, &z, &fi, &gamma, &sdata,
                                 &user_data);
-  const double* y = N_VGetArrayPointer(predicted);
-  predicted_.assign(y, y + mass_.size());
-  dynamics_.model().assemble_tangent(y, stiffness_, false);
+  const double* displacement = N_VGetArrayPointer(predicted);
+  predicted_.resize(mass_.size());
+  for (std::size_t k = 0; k < mass_.size(); ++k) predicted_[k] = origin_[k] + displacement[k];
+  dynamics_.model().assemble_tangent(predicted_.data(), stiffness_, false);
   projected_ = false;
   std::vector<int> held;
   std::vector<Vec3> velocity;

@@ -1,6 +1,7 @@
 #pragma once
 // A SUNLinearSolver for ARKODE's implicit stages that reduces the first-order Newton system to
-// an SPD one in positions and solves it with CHOLMOD (docs/integrators.md). For u = [y; v] and
+// an SPD one in positions and solves it with CHOLMOD (docs/integrators.md). For u = [y − y0; v]
+// (ARKODE integrates the displacement from the run's first state y0) and
 // f_i = [v; M⁻¹F_int(y) − c v], the stage system (I − γJ)Δ = b with J = [[0, I], [−M⁻¹K, −cI]]
 // becomes
 //   (M(1 + γc) + γ²K) Δy = M((1 + γc) b_y + γ b_v),   Δv = (Δy − b_y) / γ,
@@ -19,7 +20,8 @@ namespace fissure {
 
 class ReducedNewtonSystem {
  public:
-  ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory);
+  // origin: y0, the positions ARKODE's displacement unknowns are measured from.
+  ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory, const std::vector<double>& origin);
   // Assembles K at ARKODE's predicted stage and factorizes.
   void setup();
   // x = (I − γJ)⁻¹ b, refactorizing first if ARKODE's γ changed since the last factorization.
@@ -31,8 +33,9 @@ class ReducedNewtonSystem {
 
   Dynamics& dynamics_;
   void* arkode_memory_;
+  const std::vector<double>& origin_;
   SparseSymmetric stiffness_;      // K at the last setup
-  std::vector<double> predicted_;  // the state K was assembled at
+  std::vector<double> predicted_;  // the positions K was assembled at
   bool projected_ = false;         // K is K⁺
   SparseSymmetric system_;         // M(1 + γc) + γ²K with held unknowns taken out, over γ²
   std::vector<int> diagonal_;
