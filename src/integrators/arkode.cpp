@@ -32,6 +32,7 @@ struct Arkode::Solver {
   std::unique_ptr<ReducedNewtonSystem> reduced;
   std::exception_ptr error;  // an exception raised inside an ARKODE callback
   double fixed_step = 0;
+  Statistics carried;  // the counters of the runs before the last re-initialisation
   ARKRhsFn explicit_rhs = nullptr, implicit_rhs = nullptr;
 };
 
@@ -122,8 +123,14 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         check(ARKStepSetMaxNonlinIters(s.memory, 10), "ARKStepSetMaxNonlinIters");
       }
     } else {
+      // Re-initialising resets ARKODE's counters and its step size: keep both.
+      s.carried = statistics();
+      realtype last_step = 0;
+      check(ARKStepGetLastStep(s.memory, &last_step), "ARKStepGetLastStep");
       check(ARKStepReInit(s.memory, s.explicit_rhs, s.implicit_rhs, state.time, s.u),
             "ARKStepReInit");
+      if (!settings_.fixed_step && last_step > 0)
+        check(ARKStepSetInitStep(s.memory, last_step), "ARKStepSetInitStep");
     }
     s.fixed_step = 0;
     reinitialise_ = false;
@@ -180,6 +187,10 @@ Statistics Arkode::statistics() const {
     stats.push_back({"linear_setups", double(setups)});
     stats.push_back({"factorizations", double(solver_->reduced->factorizations())});
   }
+  // factorizations are counted by the linear solver, which a re-initialisation keeps
+  for (std::size_t k = 0; k < solver_->carried.size(); ++k)
+    if (solver_->carried[k].first != "factorizations")
+      stats[k].second += solver_->carried[k].second;
   return stats;
 }
 

@@ -5,10 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "scene/config_file.hpp"
 #include "scene/yaml_reader.hpp"
 
 namespace fissure {
@@ -451,25 +450,15 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
 
 Config parse_config(const std::string& yaml_text, const std::string& file,
                     const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(file, "",
-                     fmt::format("not valid YAML (line {}, column {}): {}", e.mark.line + 1,
-                                 e.mark.column + 1, e.msg));
-  }
-  if (!root.IsMap()) throw InputError(file, "", "expected a YAML map at the top level");
+  YAML::Node root = parse_yaml(yaml_text, file);
   for (const auto& assignment : overrides) apply_override(root, assignment, file);
   return read_config(YamlReader(file), root);
 }
 
 Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the config file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_config(text.str(), path, overrides);
+  YAML::Node root = load_yaml_with_base(path);
+  for (const auto& assignment : overrides) apply_override(root, assignment, path);
+  return read_config(YamlReader(path), root);
 }
 
 }  // namespace fissure

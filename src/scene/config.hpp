@@ -169,11 +169,13 @@ struct Config {
   bool anisotropy_enabled() const;
 };
 
-// Loads and validates a scene. `overrides` are "key.path=value" strings (CLI --set) applied to
-// the YAML tree before validation. Throws InputError naming file, key path and reason.
+// Loads and validates a scene, starting from its `base:` file if it names one
+// (config_file.hpp). `overrides` are "key.path=value" strings (CLI --set) applied to the YAML
+// tree before validation. Throws InputError naming file, key path and reason.
 Config load_config(const std::string& path, const std::vector<std::string>& overrides = {});
 
-// The same, from YAML text; `file` names it in error messages and resolves relative paths.
+// The same, from YAML text (without `base:`); `file` names it in error messages and resolves
+// relative paths.
 Config parse_config(const std::string& yaml_text, const std::string& file,
                     const std::vector<std::string>& overrides = {});
 

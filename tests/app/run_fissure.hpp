@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 
 namespace fissure::test {
@@ -36,6 +39,31 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path) << text;
+}
+
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The top-level keys of a run's summary.json with their values as written (strings quoted);
+// nested maps such as integrator_statistics are skipped.
+inline std::map<std::string, std::string> read_summary(const std::filesystem::path& path) {
+  const std::string text = slurp(path);
+  std::map<std::string, std::string> values;
+  static const std::regex pair(R"re("([A-Za-z_]+)"\s*:\s*("[^"]*"|[^,\s}]+))re");
+  int depth = 0;
+  std::size_t scanned = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), pair); it != std::sregex_iterator();
+       ++it) {
+    const auto at = static_cast<std::size_t>(it->position());
+    for (; scanned < at; ++scanned)
+      depth += text[scanned] == '{' ? 1 : text[scanned] == '}' ? -1 : 0;
+    if (depth == 1) values[(*it)[1]] = (*it)[2];
+  }
+  return values;
 }
 
 }  // namespace fissure::test

@@ -47,13 +47,6 @@ const char* kScene =
 constexpr int kSteps = 21;
 constexpr double kDt = 0.001, kEvery = 0.005, kProbeEvery = 0.002, kEnd = 0.021;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
   std::stringstream s(text);
@@ -69,7 +62,7 @@ bool is_json_number(const std::string& token) {
 
 // The keys of the `summary.json` table in docs/output.md (first column, in backticks).
 std::vector<std::string> documented_summary_keys() {
-  const auto lines = lines_of(slurp(fs::path(FISSURE_SOURCE_DIR) / "docs" / "output.md"));
+  const auto lines = lines_of(test::slurp(fs::path(FISSURE_SOURCE_DIR) / "docs" / "output.md"));
   std::vector<std::string> keys;
   bool in_section = false;
   static const std::regex row(R"(^\|\s*`([A-Za-z_]+)`\s*\|)");
@@ -104,7 +97,7 @@ std::string attribute(const std::string& element, const std::string& name) {
 // tile the appended section exactly.
 Vtu read_vtu(const fs::path& path) {
   Vtu vtu;
-  const std::string text = slurp(path);
+  const std::string text = test::slurp(path);
   const std::string marker = "<AppendedData encoding=\"raw\">";
   const auto at = text.find(marker);
   EXPECT_NE(at, std::string::npos) << path;
@@ -190,20 +183,10 @@ const RunFiles& tiny_run() {
   return run;
 }
 
-std::map<std::string, std::string> read_summary(const fs::path& path) {
-  const std::string text = slurp(path);
-  std::map<std::string, std::string> values;
-  static const std::regex pair(R"re("([A-Za-z_]+)"\s*:\s*("[^"]*"|[^,\s}]+))re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), pair); it != std::sregex_iterator();
-       ++it)
-    values[(*it)[1]] = (*it)[2];
-  return values;
-}
-
 TEST(Output, PvdListsEveryFrameWithIncreasingTime) {
   const RunFiles& run = tiny_run();
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-  const std::string pvd = slurp(run.out / "particles.pvd");
+  const std::string pvd = test::slurp(run.out / "particles.pvd");
   const std::regex dataset(R"(<DataSet[^>]*>)");
   std::vector<double> times;
   std::set<std::string> listed;
@@ -238,7 +221,7 @@ TEST(Output, PvdListsEveryFrameWithIncreasingTime) {
 TEST(Output, VtuFramesParseAndMatchTheRun) {
   const RunFiles& run = tiny_run();
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-  const auto summary = read_summary(run.out / "summary.json");
+  const auto summary = test::read_summary(run.out / "summary.json");
   ASSERT_TRUE(summary.count("particles"));
   const long particles = std::stol(summary.at("particles"));
   ASSERT_GT(particles, 0);
@@ -294,7 +277,7 @@ TEST(Output, VtuDamageFollowsTheFracture) {
   const auto outcome = test::run_fissure("run " + (dir / "scene.yaml").string() + " --out " +
                                          (dir / "out").string());
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
-  EXPECT_GT(std::stol(read_summary(dir / "out" / "summary.json").at("broken_bonds")), 0);
+  EXPECT_GT(std::stol(test::read_summary(dir / "out" / "summary.json").at("broken_bonds")), 0);
   const Vtu vtu = read_vtu(dir / "out" / "particles_000000.vtu");
   ASSERT_FALSE(HasFailure());
   const auto& damage = vtu.float64.at("damage");
@@ -313,7 +296,7 @@ TEST(Output, VtuDamageFollowsTheFracture) {
 TEST(Output, ProbesCsvHeaderAndRows) {
   const RunFiles& run = tiny_run();
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-  const auto lines = lines_of(slurp(run.out / "probes.csv"));
+  const auto lines = lines_of(test::slurp(run.out / "probes.csv"));
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines[0],
             "time,kinetic_energy,elastic_energy,"
@@ -372,11 +355,11 @@ TEST(Output, ProbesCsvHeaderAndRows) {
 TEST(Output, SummaryHasEveryDocumentedKey) {
   const RunFiles& run = tiny_run();
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-  const std::string text = slurp(run.out / "summary.json");
+  const std::string text = test::slurp(run.out / "summary.json");
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text.front(), '{');
   EXPECT_EQ(text[text.find_last_not_of(" \n")], '}');
-  const auto values = read_summary(run.out / "summary.json");
+  const auto values = test::read_summary(run.out / "summary.json");
   const auto keys = documented_summary_keys();
   // Guard the doc parser itself: the table lists at least these.
   for (const char* k : {"status", "particles", "bonds", "steps", "dt", "energy_drift"})
@@ -432,7 +415,8 @@ TEST(Output, InfoPrintsTheDocumentedLines) {
   // (9 digits) to 5e-4 relative.
   const double info_dt = std::stod(found["stable dt estimate: "]);
   if (run.outcome.exit_code == 0) {
-    const double summary_dt = std::stod(read_summary(run.out / "summary.json").at("stable_dt"));
+    const double summary_dt =
+        std::stod(test::read_summary(run.out / "summary.json").at("stable_dt"));
     EXPECT_NEAR(info_dt, summary_dt, 5e-4 * summary_dt);
   }
 }
