@@ -1,4 +1,4 @@
-// fissure: run a scene, describe it, or render a run's frames.
+// fissure: run a scene, describe it, render a run's frames, or run a work-precision study.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -11,6 +11,7 @@
 #include "render/render.hpp"
 #include "render/render_settings.hpp"
 #include "scene/config.hpp"
+#include "study/study.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -38,6 +39,10 @@ int main(int argc, char** argv) {
   render->add_option("--set", overrides, "override a config key, e.g. render.every=5")
       ->allow_extra_args(false);
 
+  auto* study = app.add_subcommand(
+      "study", "run a work-precision study: error against wall time per integrator");
+  study->add_option("study_file", config_path, "study file (YAML, docs/studies.md)")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -52,6 +57,12 @@ int main(int argc, char** argv) {
           out_dir, fissure::load_render_settings(config_path, overrides), isatty(fileno(stderr)));
       fmt::print("rendered {} frames to {} in {:.1f} s{}\n", r.frames, r.folder, r.seconds,
                  r.animation.empty() ? "" : ", animation " + r.animation);
+      return 0;
+    }
+    if (*study) {
+      const auto s = fissure::run_study(config_path, isatty(fileno(stderr)));
+      fmt::print("study: {} runs ({} refused or failed); results.csv, results.md{} in {}\n", s.runs,
+                 s.failed, s.plotted ? ", work_precision.png/.svg" : "", s.folder);
       return 0;
     }
     fissure::Config config = fissure::load_config(config_path, overrides);

@@ -66,12 +66,13 @@ void write_summary(const std::string& path, const RunSummary& s) {
         "  \"dt\": {},\n  \"stable_dt\": {},\n  \"wall_seconds\": {},\n"
         "  \"seconds_per_step\": {},\n  \"setup_seconds\": {},\n  \"peak_rss_mb\": {},\n"
         "  \"energy_drift\": {},\n  \"broken_bonds\": {},\n  \"fragments\": {},\n"
-        "  \"post_steps\": {},\n  \"integrator\": \"{}\",\n  \"integrator_statistics\": "
+        "  \"post_steps\": {},\n  \"force_evaluations\": {},\n  \"integrator\": \"{}\",\n"
+        "  \"integrator_statistics\": "
         "{{{}}}\n}}\n",
         s.status, s.particles, s.bonds, s.steps, json_number(s.dt), json_number(s.stable_dt),
         json_number(s.wall_seconds), json_number(s.seconds_per_step), json_number(s.setup_seconds),
         json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds, s.fragments,
-        s.post_steps, s.integrator, statistics);
+        s.post_steps, s.force_evaluations, s.integrator, statistics);
   });
 }
 
@@ -276,6 +277,7 @@ RunSummary Simulation::run() {
   summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
   summary_.fragments = count_fragments(scene_.families, *model_);
   summary_.post_steps = static_cast<long>(post_step_->calls());
+  summary_.force_evaluations = dynamics_->force_evaluations();
   summary_.integrator_statistics = integrator_->statistics();
   write_summary(config_.output.dir + "/summary.json", summary_);
   return summary_;

@@ -26,8 +26,9 @@ struct RunSummary {
   long broken_bonds = 0;  // each pair counted once, initial cracks included
   long fragments = 0;     // connected components of intact bonds at the end
   std::string status = "completed";
-  long post_steps = 0;     // calls of the shared post-step (one per accepted step)
-  std::string integrator;  // integrator.type
+  long post_steps = 0;         // calls of the shared post-step (one per accepted step)
+  long force_evaluations = 0;  // evaluations of the model's internal forces
+  std::string integrator;      // integrator.type
   std::vector<std::pair<std::string, double>> integrator_statistics;
 };
 

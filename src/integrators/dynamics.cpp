@@ -34,8 +34,13 @@ int Dynamics::active_constraint(std::size_t k, double t) const {
   return -1;
 }
 
+void Dynamics::internal_forces(const double* y, double* f) {
+  model_.forces(y, f);
+  ++force_evaluations_;
+}
+
 void Dynamics::acceleration(double t, const double* y, const double* v, double* a) {
-  model_.forces(y, force_.data());
+  internal_forces(y, force_.data());
   if (colliders_) colliders_->add_forces(y, v, force_.data());
   if (self_contact_) self_contact_->add_forces(y, force_.data());
   const int n = static_cast<int>(mass_.size());
@@ -66,7 +71,7 @@ void Dynamics::hold(double t, double* a) const {
 }
 
 void Dynamics::implicit_acceleration(double t, const double* y, const double* v, double* a) {
-  model_.forces(y, force_.data());
+  internal_forces(y, force_.data());
   const int n = static_cast<int>(mass_.size());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)

@@ -23,6 +23,9 @@ class Dynamics {
   // Both are zero where a constraint holds the particle at time t.
   void implicit_acceleration(double t, const double* y, const double* v, double* a);
   void explicit_acceleration(double t, const double* y, const double* v, double* a);
+  // The model's internal forces F_int(y), 3N, overwritten; counted in force_evaluations().
+  void internal_forces(const double* y, double* f);
+  long force_evaluations() const { return force_evaluations_; }
   // External forces M g + F_contact(y, v) (colliders and self-contact), 3N, overwritten.
   void external_forces(const double* y, const double* v, double* f);
   // Sets the velocity of every particle held by a constraint active at time t.
@@ -59,6 +62,7 @@ class Dynamics {
   std::unique_ptr<Colliders> colliders_;
   std::unique_ptr<SelfContact> self_contact_;
   double constraint_power_ = 0;
+  long force_evaluations_ = 0;
 };
 
 }  // namespace fissure

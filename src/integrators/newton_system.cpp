@@ -58,7 +58,7 @@ double NewtonSystem::objective(const double* z) {
 }
 
 void NewtonSystem::residual(const double* z, double* r) {
-  dynamics_.model().forces(z, force_.data());
+  dynamics_.internal_forces(z, force_.data());
   const std::size_t n = mass_.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k)

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "model/dilatation_calibration.hpp"
-#include "model/stable_time_step.hpp"
 
 namespace fissure {
 
@@ -227,15 +226,6 @@ std::size_t LpsModel::update_plasticity(const double* y) {
     plastic_dilatation_[i] = plastic_theta;  // θ^p_i = Σ_j c_ij e^p_ij V_j
   }
   return yielded;
-}
-
-double LpsModel::stable_time_step() const {
-  const int n = particles_.count();
-  std::vector<double> b(n);
-  for (int i = 0; i < n; ++i) b[i] = 0.5 * terms_[i].deviatoric;  // b_i = 15μ/(2m_i)
-  const std::vector<double> omega(bond_omega_.begin(), bond_omega_.end());
-  const std::vector<double> c(bond_weight_.begin(), bond_weight_.end());
-  return gershgorin_time_step(particles_, families_, materials_, {b, omega, c});
 }
 
 void LpsModel::break_bond(int i, std::size_t b) {

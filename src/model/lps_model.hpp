@@ -34,6 +34,9 @@ class LpsModel final : public Model {
   template <bool Plastic>
   void compute_forces(const double* y, double* f);
   void update_dilatation(const double* y);
+  // h_ij for every directed bond: the majoriser stiffness row i gives bond b (lps_stiffness.cpp);
+  // a bond's stiffness is h_ij + h_ji.
+  std::vector<double> majoriser_bond_rows() const;
   double deviatoric_extension(const double* y, int i, int b) const;
   double pair_force(int i, std::size_t b, double length) const;
   void set_up_plasticity(const PlasticPoints& plasticity);

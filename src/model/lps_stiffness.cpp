@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "linear/sparse_symmetric.hpp"
@@ -73,15 +74,14 @@ double LpsModel::pair_force(int i, std::size_t b, double length) const {
 // for any ε in (0, 1] (c̄rᵀ + rc̄ᵀ ⪯ ε c̄c̄ᵀ + rrᵀ/ε; ε = |r|/|c̄| balances the two), and a rank-one
 // aaᵀ ⪯ diag(Σ_k|a_k| |a_j|) by Cauchy–Schwarz. So each bond gets a stiffness along n, and the
 // geometric term is clamped at max(p, 0): K^bw ⪰ K and K^bw ⪰ 0.
-void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
-  update_dilatation(y);
+// h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond b,
+// for every directed bond: a bond's stiffness is h_ij + h_ji.
+std::vector<double> LpsModel::majoriser_bond_rows() const {
   const int n = particles_.count();
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
   const auto& V = particles_.volume;
-  // h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond
-  // b, for every directed bond: a bond's stiffness is h_ij + h_ji.
   std::vector<double> h(families_.directed_bonds());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -108,6 +108,50 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
              (B * bond_omega_[b] * V[nbr[b]] + a * sum_c * std::abs(c) + q * sum_r * std::abs(r));
     }
   }
+  return h;
+}
+
+// Gershgorin on S = M^-1/2 K^bw M^-1/2 at the reference state (no bond force, so no geometric
+// term). A bond of stiffness k and direction n puts k n nᵀ in the blocks (i,i) and (j,j) and
+// −k n nᵀ in (i,j). Two bounds on λ_max(S), both valid, the smaller taken: by blocks (norms
+// ‖k n nᵀ‖ = k), Σ_j k_ij w_ij; by scalar rows (i, d), Σ_j k_ij w_ij |n_d| ‖n‖₁; with
+// w_ij = 1/m_i + 1/√(m_i m_j). K ⪯ K^bw makes it a bound for the exact tangent too; symplectic
+// Euler and Verlet are stable for dt < 2/√λ_max (notes §4).
+double LpsModel::stable_time_step() const {
+  const std::vector<double> h = majoriser_bond_rows();
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& x = particles_.reference;
+  const auto& mass = particles_.mass;
+  double by_blocks = 0, by_rows = 0;
+#pragma omp parallel for reduction(max : by_blocks, by_rows) schedule(static)
+  for (int i = 0; i < particles_.count(); ++i) {
+    double block = 0, row[3] = {0, 0, 0};
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const int j = nbr[b];
+      const double xi = families_.reference_length[b];
+      const double n[3] = {std::abs(x[3 * j] - x[3 * i]) / xi,
+                           std::abs(x[3 * j + 1] - x[3 * i + 1]) / xi,
+                           std::abs(x[3 * j + 2] - x[3 * i + 2]) / xi};
+      const double k =
+          (h[b] + h[families_.reverse[b]]) * (1.0 / mass[i] + 1.0 / std::sqrt(mass[i] * mass[j]));
+      block += k;
+      for (int d = 0; d < 3; ++d) row[d] += k * n[d] * (n[0] + n[1] + n[2]);
+    }
+    by_blocks = std::max(by_blocks, block);
+    by_rows = std::max({by_rows, row[0], row[1], row[2]});
+  }
+  const double lambda_max = std::min(by_blocks, by_rows);
+  return lambda_max > 0 ? 2.0 / std::sqrt(lambda_max) : std::numeric_limits<double>::infinity();
+}
+
+void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
+  update_dilatation(y);
+  const int n = particles_.count();
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& xi = families_.reference_length;
+  const std::vector<double> h = majoriser_bond_rows();
   std::fill(K.values.begin(), K.values.end(), 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {

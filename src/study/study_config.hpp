@@ -1,0 +1,35 @@
+#pragma once
+// A work–precision study file (fissure study STUDY.yaml; docs/studies.md): a scene, a reference,
+// and integrator configurations each swept over time steps or tolerances.
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+// One point of a sweep: the scene with these overrides (key.path=value, as --set).
+struct StudyPoint {
+  std::string run;        // the configuration's name
+  std::string parameter;  // "dt", "rtol" or "" (the reference, or a run without a sweep)
+  double value = 0;       // the swept value
+  std::vector<std::string> overrides;
+};
+
+struct StudyConfig {
+  std::string file;
+  std::string scene;                   // path of the scene file, resolved against the study's
+  std::vector<std::string> scene_set;  // overrides applied to the scene for every run
+  double every = 0;                    // compare times every, 2 every, ..., time.end (0: end only)
+  std::string output_dir;
+  // The reference: a run (reference_run) or a CSV of probe values (reference_probes).
+  bool reference_is_run = true;
+  StudyPoint reference_run;
+  std::string reference_probes;  // CSV path, resolved against the study file
+  std::vector<StudyPoint> points;
+};
+
+// Reads and checks a study file; InputError naming the file, the key and the reason.
+StudyConfig load_study(const std::string& path);
+
+}  // namespace fissure
