@@ -124,15 +124,19 @@ Config point_config(const StudyConfig& study, const StudyPoint& point, double in
 }
 
 bool make_plot(const std::string& folder) {
-  if (find_program("python3").empty()) {
+  // Debian's interpreter, where python3-matplotlib installs, before whatever python3 comes
+  // first on PATH (e.g. a pyenv shim without matplotlib).
+  const std::string python =
+      fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : find_program("python3");
+  if (python.empty()) {
     fmt::print(stderr,
                "warning: python3 not found: no work-precision plot (scripts/setup "
                "installs python3-matplotlib)\n");
     return false;
   }
   write_atomically(folder + "/plot_study.py", [](std::ostream& out) { out << kPlotScript; });
-  const int status = run_program({"python3", "plot_study.py", "results.csv", "work_precision"},
-                                 folder, folder + "/plot.log");
+  const int status = run_program({python, "plot_study.py", "results.csv", "work_precision"}, folder,
+                                 folder + "/plot.log");
   if (status != 0)
     fmt::print(stderr,
                "warning: the plot script failed (exit {}), see {}/plot.log; is "
