@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -212,6 +213,7 @@ StudyOutcome run_study(const std::string& study_file, bool progress) {
                    ? fmt::format(", max error/d {:.3g}, {:.3g} s stepping", row.error.max,
                                  row.summary.seconds_per_step * row.summary.steps)
                    : ": " + row.message);
+    std::fflush(stdout);
     rows.push_back(row);
     write_results(study.output_dir, rows);
   }
