@@ -66,7 +66,17 @@ void ReducedNewtonSystem::factorize(double gamma) {
 }
 
 void ReducedNewtonSystem::solve(const double* b, double* x) {
-  if (fixed_.empty()) setup();  // ARKODE may solve before its first setup call
+  double t = 0;
+  ARKStepGetCurrentTime(arkode_memory_, &t);
+  if (fixed_.empty() || t != stage_time_) {
+    stage_time_ = t;
+    stage_solves_ = 0;
+    refreshed_in_stage_ = false;
+  }
+  if (fixed_.empty() || (++stage_solves_ > 5 && !refreshed_in_stage_)) {
+    setup();
+    refreshed_in_stage_ = stage_solves_ > 0;
+  }
   double gamma = gamma_;
   ARKStepGetCurrentGamma(arkode_memory_, &gamma);
   if (std::abs(gamma - gamma_) > 1e-12 * gamma_) factorize(gamma);

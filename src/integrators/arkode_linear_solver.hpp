@@ -25,6 +25,9 @@ class ReducedNewtonSystem {
   // Assembles K at ARKODE's predicted stage and factorizes.
   void setup();
   // x = (I − γJ)⁻¹ b, refactorizing first if ARKODE's γ changed since the last factorization.
+  // ARKODE 6.4 does not call setup for a matrix-embedded solver, so the matrix is refreshed here
+  // too: at the first solve, and when a stage needs a sixth Newton iteration (K is stale, e.g.
+  // after large rotations), at that stage's prediction.
   void solve(const double* b, double* x);
   long factorizations() const { return factor_.factorizations(); }
 
@@ -43,6 +46,9 @@ class ReducedNewtonSystem {
   std::vector<char> fixed_;   // per position unknown: held at the last setup
   CholmodFactor factor_;
   double gamma_ = 0;
+  double stage_time_ = 0;  // t of the stage the last solve belonged to
+  int stage_solves_ = 0;   // solves (Newton iterations) in that stage
+  bool refreshed_in_stage_ = false;
   std::vector<double> rhs_, held_step_, coupling_;
 };
 

@@ -84,6 +84,38 @@ TEST(Study, ErrorFallsWithDtAtEachIntegratorsOrder) {
   }
 }
 
+// A study whose reference is a CSV of probe values (here the probes.csv of a VERNER_8_5_6 run):
+// only probe errors are measured, and they fall with dt at symplectic Euler's order.
+TEST(Study, ProbeCsvReferenceGivesProbeErrors) {
+  const fs::path dir = test::scratch_dir("study_csv");
+  const std::string scene = std::string(FISSURE_SOURCE_DIR) + "/configs/compare/bar_swing.yaml";
+  const auto reference = test::run_fissure(
+      "run " + scene + " --out " + (dir / "reference").string() +
+      " --set time.end=0.01 --set bodies[0].resolution=0.1 --set output.every=0.005 " +
+      "--set integrator.type=arkode --set integrator.method=VERNER_8_5_6 " +
+      "--set integrator.rtol=1e-12 --set integrator.atol=1e-15");
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+  test::write_file(dir / "csv.yaml",
+                   "scene: " + scene +
+                       "\nset: [\"time.end=0.01\", \"bodies[0].resolution=0.1\"]\nevery: 0.005\n"
+                       "reference: {probes: reference/probes.csv}\nruns:\n"
+                       "  - {name: symplectic_euler, integrator: {type: symplectic_euler}, dt: "
+                       "[1.0e-5, 5.0e-6]}\noutput: {dir: " +
+                       (dir / "out").string() + "}\n");
+  const auto outcome = test::run_fissure("study " + (dir / "csv.yaml").string());
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
+  const auto rows = read_csv(dir / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "ok");
+    EXPECT_TRUE(row.at("error_max").empty());
+  }
+  const double coarse = std::stod(rows[0].at("probe_error")),
+               fine = std::stod(rows[1].at("probe_error"));
+  std::printf("probe errors %.3g, %.3g: order %.2f\n", coarse, fine, std::log2(coarse / fine));
+  EXPECT_NEAR(std::log2(coarse / fine), 1.0, 0.3);
+}
+
 TEST(Study, BadStudyFileNamesFileAndKey) {
   const fs::path dir = test::scratch_dir("study_bad");
   test::write_file(dir / "bad.yaml",

@@ -1,0 +1,50 @@
+#pragma once
+// Shared set-up of the verification cases: isotropic elastic constants from κ and μ, and the
+// cantilever of tests/integrators/test_cantilever.cpp at a chosen resolution.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "support/scenes.hpp"
+
+namespace fissure::verification {
+
+// Young's modulus E = 9κμ / (3κ + μ) and Poisson's ratio ν = (3κ − 2μ) / (2(3κ + μ)).
+inline double youngs_modulus(double bulk, double shear) {
+  return 9 * bulk * shear / (3 * bulk + shear);
+}
+inline double poisson_ratio(double bulk, double shear) {
+  return (3 * bulk - 2 * shear) / (2 * (3 * bulk + shear));
+}
+// Cowper's (1966) shear coefficient of a rectangular section, k_s = 10(1 + ν) / (12 + 11ν).
+inline double shear_coefficient(double nu) { return 10 * (1 + nu) / (12 + 11 * nu); }
+
+// A 1.0 × 0.1 × 0.1 m beam along x, κ = 500 MPa, μ = 300 MPa (E = 750 MPa, ν = 0.25),
+// ρ = 1000 kg/m³, clamped by holding the particles in x < 0: a block one horizon (1.45 λ) long
+// behind the clamp face x = 0.
+struct Cantilever {
+  static constexpr double length = 1.0, side = 0.1, density = 1000;
+  static constexpr double bulk = 5.0e8, shear = 3.0e8;
+};
+
+inline Scene cantilever_scene(double resolution, double gravity) {
+  using C = Cantilever;
+  const double anchor = 1.45 * resolution;
+  const std::string yaml = fmt::format(
+      "time: {{end: 1.0}}\ngravity: [0, 0, {}]\nbodies:\n"
+      "  - geometry: {{box: {{min: [{}, 0, 0], max: [{}, {}, {}]}}}}\n"
+      "    resolution: {}\n    material: {{density: {}, bulk_modulus: {}, shear_modulus: {}}}\n"
+      "constraints:\n  - {{region: {{box: {{min: [-1, -1, -1], max: [0, 1, 1]}}}}, fix: true}}\n",
+      -gravity, -anchor, C::length, C::side, C::side, resolution, C::density, C::bulk, C::shear);
+  return build_scene(parse_config(yaml, "cantilever.yaml"));
+}
+
+// The particles within one resolution of the free end x = L.
+inline std::vector<int> tip_particles(const Particles& p, double resolution) {
+  std::vector<int> tip;
+  for (int i = 0; i < p.count(); ++i)
+    if (p.reference[3 * i] >= Cantilever::length - resolution) tip.push_back(i);
+  return tip;
+}
+
+}  // namespace fissure::verification

@@ -1,0 +1,101 @@
+// Static deflection of the cantilever of beam.hpp under its own weight (petsc_newton, scheme
+// static) as the resolution is refined, against beam theory with the shear correction:
+//   w(x) = q x²(6L² − 4Lx + x²) / (24 EI)  +  q (Lx − x²/2) / (k_s μ A),   q = ρ g A,
+// Euler–Bernoulli bending plus Timoshenko's shear deflection (k_s Cowper's coefficient;
+// at the tip the shear term is (E / (3 k_s μ)) (b/L)² = 1.0% of the bending term).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "integrators/integrator.hpp"
+#include "model/model.hpp"
+#include "verification/beam.hpp"
+
+namespace fissure {
+namespace {
+
+using verification::Cantilever;
+
+struct Deflection {
+  int particles;
+  double x, measured, theory;
+};
+
+// The mean vertical displacement of the particles within one resolution of the free end, and
+// the theory at their mean x.
+Deflection static_tip_deflection(double resolution) {
+  using C = Cantilever;
+  const double gravity = 9.81;
+  const Scene scene = verification::cantilever_scene(resolution, gravity);
+  auto model = make_model(scene);
+  Dynamics dynamics(scene, *model);
+  IntegratorSettings settings;
+  settings.type = "petsc_newton";
+  settings.scheme = "static";
+  settings.petsc_options = "-snes_rtol 1e-10";
+  auto integrator = make_integrator(settings, "test");
+  const Particles& p = scene.particles;
+  State s = {p.reference, std::vector<double>(p.reference.size(), 0.0), 0.0};
+  integrator->step(dynamics, s, 1.0);
+
+  double sum_w = 0, sum_x = 0;
+  const auto tip = verification::tip_particles(p, resolution);
+  for (int i : tip) {
+    sum_w -= s.position[3 * i + 2] - p.reference[3 * i + 2];
+    sum_x += p.reference[3 * i];
+  }
+  const double x = sum_x / tip.size(), L = C::length;
+  const double E = verification::youngs_modulus(C::bulk, C::shear);
+  const double ks = verification::shear_coefficient(verification::poisson_ratio(C::bulk, C::shear));
+  const double A = C::side * C::side, I = std::pow(C::side, 4) / 12;
+  const double q = C::density * gravity * A;
+  const double bending = q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);
+  const double shear = q * (L * x - 0.5 * x * x) / (ks * C::shear * A);
+  return {p.count(), x, sum_w / tip.size(), bending + shear};
+}
+
+// The order p of a sequence r(λ) = r* + C λ^p from three resolutions λ = b/2, b/3, b/4:
+// (r2 − r3)/(r3 − r4) = (2^−p − 3^−p)/(3^−p − 4^−p), solved by bisection on p ∈ [0.1, 10]
+// (the right side grows with p).
+double observed_order(double d23, double d34) {
+  const double target = d23 / d34;
+  auto ratio = [](double p) {
+    return (std::pow(2, -p) - std::pow(3, -p)) / (std::pow(3, -p) - std::pow(4, -p));
+  };
+  double lo = 0.1, hi = 10;
+  for (int k = 0; k < 60; ++k) (ratio(0.5 * (lo + hi)) < target ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+// λ = 0.1/2, 0.1/3, 0.1/4 m: 2, 3 and 4 tets through the 0.1 m thickness (1.4 to 2.8
+// horizons), so λ halves over two refinements. A third halving, 0.0125 m, is out of the time
+// budget (about 60k particles, minutes per Newton solve).
+//
+// The error against theory does not fall monotonically (docs/verification.md): the ratio
+// r = w/theory falls through 1 as λ shrinks (likely a soft clamp at the coarsest λ against the
+// stiffening surface effect); further runs at λ = 0.028 and 0.020 m gave 0.960 and 0.953, a
+// plateau, not a return to 1. Asserted instead: the discrete solution converges, i.e. the
+// change of r shrinks at each refinement (its observed order is printed, not asserted), and
+// the finest is within 5% of theory, the bound of test_cantilever.cpp (surface effect at 2.8
+// horizons across: up to 9.6% stiffer in uniaxial stress, docs/model.md).
+TEST(CantileverConvergence, StaticDeflectionConvergesWithResolution) {
+  const double thickness = Cantilever::side;
+  double ratio[3];
+  for (int k = 0; k < 3; ++k) {
+    const double resolution = thickness / (k + 2);
+    const Deflection d = static_tip_deflection(resolution);
+    ratio[k] = d.measured / d.theory;
+    std::printf(
+        "lambda %.4f m: %5d particles, tip x %.4f m, w %.4e m, theory %.4e m, ratio %.4f, "
+        "error %+.4f\n",
+        resolution, d.particles, d.x, d.measured, d.theory, ratio[k], ratio[k] - 1);
+  }
+  const double d23 = std::abs(ratio[0] - ratio[1]), d34 = std::abs(ratio[1] - ratio[2]);
+  std::printf("successive changes of the ratio: %.4f, %.4f; observed order %.2f\n", d23, d34,
+              observed_order(d23, d34));
+  EXPECT_LT(d34, d23);
+  EXPECT_NEAR(ratio[2], 1.0, 0.05);
+}
+
+}  // namespace
+}  // namespace fissure
