@@ -1,5 +1,7 @@
 #include "integrators/dynamics.hpp"
 
+#include <cmath>
+
 namespace fissure {
 
 Dynamics::Dynamics(const Scene& scene, Model& model)
@@ -17,6 +19,7 @@ Dynamics::Dynamics(const Scene& scene, Model& model)
         held_by_.push_back(static_cast<int>(c));
     if (held_by_.size() == before) continue;
     held_particles_.push_back(i);
+    held_reference_.insert(held_reference_.end(), &p.reference[3 * i], &p.reference[3 * i] + 3);
     held_offsets_.push_back(static_cast<int>(held_by_.size()));
   }
   force_.resize(3 * mass_.size());
@@ -51,17 +54,42 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
     for (int k = 0; k < 3; ++k)
       a[3 * i + k] = force_[3 * i + k] * inv_m + gravity_[k] - c * v[3 * i + k];
   }
-  // A held particle moves at constant velocity: its reaction is −m a_free, its power −m a_free·v.
+  // A held particle's reaction is m (a_prescribed − a_free); a_prescribed ⟂ v (uniform
+  // translation and rotation), so its power is −m a_free·v.
   constraint_power_ = 0;
   for (std::size_t k = 0; k < held_particles_.size(); ++k) {
     const int c = active_constraint(k, t);
     if (c < 0) continue;
     const int i = held_particles_[k];
+    const Vec3 velocity = held_velocity(k, c, t);
     for (int d = 0; d < 3; ++d) {
-      constraint_power_ -= mass_[i] * a[3 * i + d] * constraints_[c].velocity[d];
+      constraint_power_ -= mass_[i] * a[3 * i + d] * velocity[d];
       a[3 * i + d] = 0;
     }
   }
+}
+
+Vec3 Dynamics::held_velocity(std::size_t k, int c, double t) const {
+  const Constraint& s = constraints_[c];
+  Vec3 v = s.velocity;
+  if (!s.rotates()) return v;
+  const Vec3& w = s.angular_velocity;
+  const double rate = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const Vec3 axis = {w[0] / rate, w[1] / rate, w[2] / rate};
+  const double* x0 = &held_reference_[3 * k];
+  const Vec3 r0 = {x0[0] - s.center[0], x0[1] - s.center[1], x0[2] - s.center[2]};
+  // Rodrigues: r = r0 cos θ + (a × r0) sin θ + a (a·r0)(1 − cos θ), θ = |ω| t
+  const double angle = rate * t, cos_a = std::cos(angle), sin_a = std::sin(angle);
+  const double along = axis[0] * r0[0] + axis[1] * r0[1] + axis[2] * r0[2];
+  const Vec3 cross = {axis[1] * r0[2] - axis[2] * r0[1], axis[2] * r0[0] - axis[0] * r0[2],
+                      axis[0] * r0[1] - axis[1] * r0[0]};
+  Vec3 r;
+  for (int d = 0; d < 3; ++d)
+    r[d] = r0[d] * cos_a + cross[d] * sin_a + axis[d] * along * (1 - cos_a);
+  v[0] += w[1] * r[2] - w[2] * r[1];
+  v[1] += w[2] * r[0] - w[0] * r[2];
+  v[2] += w[0] * r[1] - w[1] * r[0];
+  return v;
 }
 
 void Dynamics::hold(double t, double* a) const {
@@ -104,7 +132,7 @@ void Dynamics::held(double t, std::vector<int>& particles, std::vector<Vec3>& ve
     const int c = active_constraint(k, t);
     if (c < 0) continue;
     particles.push_back(held_particles_[k]);
-    velocities.push_back(constraints_[c].velocity);
+    velocities.push_back(held_velocity(k, c, t));
   }
 }
 
@@ -112,7 +140,8 @@ void Dynamics::constrain_velocity(double t, double* v) const {
   for (std::size_t k = 0; k < held_particles_.size(); ++k) {
     const int c = active_constraint(k, t);
     if (c < 0) continue;
-    for (int d = 0; d < 3; ++d) v[3 * held_particles_[k] + d] = constraints_[c].velocity[d];
+    const Vec3 velocity = held_velocity(k, c, t);
+    for (int d = 0; d < 3; ++d) v[3 * held_particles_[k] + d] = velocity[d];
   }
 }
 

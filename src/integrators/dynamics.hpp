@@ -49,14 +49,18 @@ class Dynamics {
   int active_constraint(std::size_t k, double t) const;
   // Zeroes a where a constraint holds the particle at time t.
   void hold(double t, double* a) const;
+  // Velocity constraint c prescribes at time t for held particle held_particles_[k]: its
+  // velocity, plus ω × R(ωt)(x0 − centre) for a rotating one (x0 the reference position).
+  Vec3 held_velocity(std::size_t k, int c, double t) const;
 
   Model& model_;
   std::vector<double> mass_;
   double gravity_[3];
   double damping_;
   std::vector<Constraint> constraints_;
-  std::vector<int> held_particles_;  // particles inside at least one constraint region
-  std::vector<int> held_offsets_;    // CSR: constraints holding each of held_particles_
+  std::vector<int> held_particles_;     // particles inside at least one constraint region
+  std::vector<double> held_reference_;  // their reference positions, 3 per held particle
+  std::vector<int> held_offsets_;       // CSR: constraints holding each of held_particles_
   std::vector<int> held_by_;
   std::vector<double> force_;
   std::unique_ptr<Colliders> colliders_;

@@ -284,13 +284,23 @@ Body read_body(const YamlReader& r, const YAML::Node& node, const std::string& p
 }
 
 Constraint read_constraint(const YamlReader& r, const YAML::Node& node, const std::string& path) {
-  r.check_keys(node, path, {"region", "fix", "velocity", "release_at"});
+  r.check_keys(node, path,
+               {"region", "fix", "velocity", "angular_velocity", "center", "release_at"});
   Constraint c;
   c.region = read_region(r, node["region"], join(path, "region"));
   if (node["fix"]) c.fix = r.boolean(node["fix"], join(path, "fix"));
-  const bool moves = static_cast<bool>(node["velocity"]);
-  if (c.fix == moves) r.fail(path, "give either fix: true or velocity: [vx, vy, vz]");
-  if (moves) c.velocity = r.vec3(node["velocity"], join(path, "velocity"));
+  const bool moves = node["velocity"] || node["angular_velocity"];
+  if (c.fix == moves)
+    r.fail(path, "give either fix: true or velocity: [vx, vy, vz] and/or angular_velocity");
+  if (node["velocity"]) c.velocity = r.vec3(node["velocity"], join(path, "velocity"));
+  if (node["angular_velocity"]) {
+    c.angular_velocity = r.vec3(node["angular_velocity"], join(path, "angular_velocity"));
+    if (!node["center"])
+      r.fail(join(path, "center"), "missing: a point on the rotation axis, [x, y, z]");
+    c.center = r.vec3(node["center"], join(path, "center"));
+  } else if (node["center"]) {
+    r.fail(join(path, "center"), "only used with angular_velocity");
+  }
   if (node["release_at"])
     c.release_at = r.non_negative(node["release_at"], join(path, "release_at"));
   return c;

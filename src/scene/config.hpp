@@ -77,6 +77,11 @@ struct Constraint {
   Region region;
   bool fix = false;  // velocity zero
   Vec3 velocity{};   // prescribed velocity when not fixed
+  // Rigid rotation at angular_velocity [rad/s] about the axis through `center` (which moves with
+  // `velocity`): a held particle moves at velocity + ω × (its rotated offset from the centre).
+  Vec3 angular_velocity{};
+  Vec3 center{};
+  bool rotates() const { return angular_velocity != Vec3{}; }
   double release_at = std::numeric_limits<double>::infinity();
 };
 

@@ -79,5 +79,21 @@ TEST(Config, ConstraintNeedsFixOrVelocity) {
   EXPECT_NE(e.find("constraints[0]: give either fix: true or velocity"), std::string::npos) << e;
 }
 
+TEST(Config, RotatingConstraintNeedsItsCenter) {
+  const std::string box = "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}, ";
+  std::string e = error_of(std::string(kMinimal) + box + "angular_velocity: [1, 0, 0]}\n");
+  EXPECT_NE(e.find("constraints[0].center: missing"), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + box + "fix: true, center: [0, 0, 0]}\n");
+  EXPECT_NE(e.find("constraints[0].center: only used with angular_velocity"), std::string::npos)
+      << e;
+  const Config c = parse_config(
+      std::string(kMinimal) + box + "angular_velocity: [0, 0, 2], center: [0.5, 0, 0]}\n",
+      "scene.yaml");
+  ASSERT_EQ(c.constraints.size(), 1u);
+  EXPECT_TRUE(c.constraints[0].rotates());
+  EXPECT_DOUBLE_EQ(c.constraints[0].angular_velocity[2], 2.0);
+  EXPECT_DOUBLE_EQ(c.constraints[0].center[0], 0.5);
+}
+
 }  // namespace
 }  // namespace fissure
