@@ -119,7 +119,8 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         s.reduced = std::make_unique<ReducedNewtonSystem>(dynamics, s.memory, s.origin);
         s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get());
         check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr), "ARKStepSetLinearSolver");
-        // The majoriser makes Newton converge linearly: allow more than the default 3 iterations.
+        // A projected or stale tangent makes Newton converge linearly: allow more than the
+        // default 3 iterations.
         check(ARKStepSetMaxNonlinIters(s.memory, 10), "ARKStepSetMaxNonlinIters");
       }
     } else {
