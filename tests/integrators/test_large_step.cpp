@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "app/energy.hpp"
+#include "support/static_equilibrium.hpp"
 #include "support/vibration.hpp"
 
 namespace fissure {
@@ -47,14 +48,7 @@ double energy(Anchored& a, const State& s) {
 
 // The static equilibrium with the anchor where the deformed start put it.
 std::vector<double> static_shape(Anchored& a) {
-  IntegratorSettings settings;
-  settings.type = "petsc_newton";
-  settings.scheme = "static";
-  settings.petsc_options = "-snes_rtol 1e-10";
-  auto integrator = make_integrator(settings, "test");
-  State s = a.initial;
-  integrator->step(*a.dynamics, s, 1.0);
-  return s.position;
+  return test::static_equilibrium(*a.dynamics, a.initial).position;
 }
 
 IntegratorSettings petsc(const char* scheme) {

@@ -1,5 +1,5 @@
-// Static deflection of the cantilever of beam.hpp under its own weight (petsc_newton, scheme
-// static) as the resolution is refined, against beam theory with the shear correction:
+// Static deflection of the cantilever of support/beam.hpp under its own weight (petsc_newton,
+// scheme static) as the resolution is refined, against beam theory with the shear correction:
 //   w(x) = q x²(6L² − 4Lx + x²) / (24 EI)  +  q (Lx − x²/2) / (k_s μ A),   q = ρ g A,
 // Euler–Bernoulli bending plus Timoshenko's shear deflection (k_s Cowper's coefficient;
 // at the tip the shear term is (E / (3 k_s μ)) (b/L)² = 1.0% of the bending term).
@@ -9,12 +9,13 @@
 
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
-#include "verification/beam.hpp"
+#include "support/beam.hpp"
+#include "support/static_equilibrium.hpp"
 
 namespace fissure {
 namespace {
 
-using verification::Cantilever;
+using test::Cantilever;
 
 struct Deflection {
   int particles;
@@ -26,27 +27,21 @@ struct Deflection {
 Deflection static_tip_deflection(double resolution) {
   using C = Cantilever;
   const double gravity = 9.81;
-  const Scene scene = verification::cantilever_scene(resolution, gravity);
+  const Scene scene = test::cantilever_scene(resolution, gravity);
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
-  IntegratorSettings settings;
-  settings.type = "petsc_newton";
-  settings.scheme = "static";
-  settings.petsc_options = "-snes_rtol 1e-10";
-  auto integrator = make_integrator(settings, "test");
   const Particles& p = scene.particles;
-  State s = {p.reference, std::vector<double>(p.reference.size(), 0.0), 0.0};
-  integrator->step(dynamics, s, 1.0);
+  const State s = test::static_equilibrium(dynamics, test::at_rest(p));
 
   double sum_w = 0, sum_x = 0;
-  const auto tip = verification::tip_particles(p, resolution);
+  const auto tip = test::tip_particles(p, resolution);
   for (int i : tip) {
     sum_w -= s.position[3 * i + 2] - p.reference[3 * i + 2];
     sum_x += p.reference[3 * i];
   }
   const double x = sum_x / tip.size(), L = C::length;
-  const double E = verification::youngs_modulus(C::bulk, C::shear);
-  const double ks = verification::shear_coefficient(verification::poisson_ratio(C::bulk, C::shear));
+  const double E = test::youngs_modulus(C::bulk, C::shear);
+  const double ks = test::shear_coefficient(test::poisson_ratio(C::bulk, C::shear));
   const double A = C::side * C::side, I = std::pow(C::side, 4) / 12;
   const double q = C::density * gravity * A;
   const double bending = q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);

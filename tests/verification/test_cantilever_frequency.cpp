@@ -1,4 +1,4 @@
-// First bending frequency of the clamped–free beam of beam.hpp against beam theory.
+// First bending frequency of the clamped–free beam of support/beam.hpp against beam theory.
 //   Euler–Bernoulli: ω1 = (β1L)² √(EI / (ρAL⁴)), β1L = 1.8751.
 //   Timoshenko (first order in (β1 r)², rotary inertia and shear, Timoshenko 1921):
 //   ω1,T ≈ ω1 [1 − ½ (β1 r)² (1 + E / (k_s μ))], r² = I/A, k_s Cowper's coefficient. The
@@ -9,12 +9,12 @@
 
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
-#include "verification/beam.hpp"
+#include "support/beam.hpp"
 
 namespace fissure {
 namespace {
 
-using verification::Cantilever;
+using test::Cantilever;
 
 // Euler–Bernoulli first mode of a cantilever, φ(s) = cosh βs − cos βs − σ(sinh βs − sin βs),
 // σ = (cosh βL + cos βL) / (sinh βL + sin βL), and its slope φ'(s); φ(L) = 2.
@@ -62,7 +62,7 @@ class ZeroCrossings {
 TEST(CantileverFrequency, FirstBendingModeMatchesBeamTheory) {
   using C = Cantilever;
   const double resolution = 0.1 / 3, amplitude = 1e-3;
-  const Scene scene = verification::cantilever_scene(resolution, 0.0);
+  const Scene scene = test::cantilever_scene(resolution, 0.0);
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "test");
@@ -75,21 +75,20 @@ TEST(CantileverFrequency, FirstBendingModeMatchesBeamTheory) {
     state.position[3 * i] -= z * scale * mode_slope(x);
     state.position[3 * i + 2] += scale * mode(x);
   }
-  const auto tip = verification::tip_particles(p, resolution);
+  const auto tip = test::tip_particles(p, resolution);
   auto tip_deflection = [&] {
     double sum = 0;
     for (int i : tip) sum += state.position[3 * i + 2] - p.reference[3 * i + 2];
     return sum / tip.size();
   };
 
-  const double E = verification::youngs_modulus(C::bulk, C::shear);
-  const double nu = verification::poisson_ratio(C::bulk, C::shear);
+  const double E = test::youngs_modulus(C::bulk, C::shear);
+  const double nu = test::poisson_ratio(C::bulk, C::shear);
   const double A = C::side * C::side, I = std::pow(C::side, 4) / 12, L = C::length;
   const double omega_eb = kBetaL * kBetaL * std::sqrt(E * I / (C::density * A * std::pow(L, 4)));
   const double beta_r_squared = kBetaL * kBetaL / (L * L) * I / A;
   const double omega_t =
-      omega_eb *
-      (1 - 0.5 * beta_r_squared * (1 + E / (verification::shear_coefficient(nu) * C::shear)));
+      omega_eb * (1 - 0.5 * beta_r_squared * (1 + E / (test::shear_coefficient(nu) * C::shear)));
   const double period_eb = 2 * M_PI / omega_eb;
 
   const double dt = 0.9 * model->stable_time_step();

@@ -1,13 +1,13 @@
 #pragma once
-// Shared set-up of the verification cases: isotropic elastic constants from κ and μ, and the
-// cantilever of tests/integrators/test_cantilever.cpp at a chosen resolution.
+// Beam tests (tests/integrators/test_cantilever.cpp, tests/verification/): isotropic elastic
+// constants from κ and μ, and a clamped cantilever at a chosen resolution.
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "support/scenes.hpp"
 
-namespace fissure::verification {
+namespace fissure::test {
 
 // Young's modulus E = 9κμ / (3κ + μ) and Poisson's ratio ν = (3κ − 2μ) / (2(3κ + μ)).
 inline double youngs_modulus(double bulk, double shear) {
@@ -47,4 +47,4 @@ inline std::vector<int> tip_particles(const Particles& p, double resolution) {
   return tip;
 }
 
-}  // namespace fissure::verification
+}  // namespace fissure::test
