@@ -68,14 +68,15 @@ void ReducedNewtonSystem::factorize(double gamma) {
 void ReducedNewtonSystem::solve(const double* b, double* x) {
   double t = 0;
   ARKStepGetCurrentTime(arkode_memory_, &t);
-  if (fixed_.empty() || t != stage_time_) {
+  const bool first = fixed_.empty();
+  if (first || t != stage_time_) {
     stage_time_ = t;
     stage_solves_ = 0;
     refreshed_in_stage_ = false;
   }
-  if (fixed_.empty() || (++stage_solves_ > 5 && !refreshed_in_stage_)) {
+  if (first || (++stage_solves_ > 5 && !refreshed_in_stage_)) {
+    refreshed_in_stage_ = !first;
     setup();
-    refreshed_in_stage_ = stage_solves_ > 0;
   }
   double gamma = gamma_;
   ARKStepGetCurrentGamma(arkode_memory_, &gamma);

@@ -57,11 +57,12 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
   // A held particle's reaction is m (a_prescribed − a_free); a_prescribed ⟂ v (uniform
   // translation and rotation), so its power is −m a_free·v.
   constraint_power_ = 0;
+  set_motions(t);
   for (std::size_t k = 0; k < held_particles_.size(); ++k) {
     const int c = active_constraint(k, t);
     if (c < 0) continue;
     const int i = held_particles_[k];
-    const Vec3 velocity = held_velocity(k, c, t);
+    const Vec3 velocity = held_velocity(k, c);
     for (int d = 0; d < 3; ++d) {
       constraint_power_ -= mass_[i] * a[3 * i + d] * velocity[d];
       a[3 * i + d] = 0;
@@ -69,23 +70,37 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
   }
 }
 
-Vec3 Dynamics::held_velocity(std::size_t k, int c, double t) const {
-  const Constraint& s = constraints_[c];
-  Vec3 v = s.velocity;
-  if (!s.rotates()) return v;
-  const Vec3& w = s.angular_velocity;
-  const double rate = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-  const Vec3 axis = {w[0] / rate, w[1] / rate, w[2] / rate};
+void Dynamics::set_motions(double t) const {
+  motions_.resize(constraints_.size());
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    const Constraint& s = constraints_[c];
+    HeldMotion& m = motions_[c];
+    m = {s.velocity, s.angular_velocity, s.center, {}, s.rotates()};
+    if (!m.rotates) continue;
+    const Vec3& w = s.angular_velocity;
+    const double rate = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    const Vec3 a = {w[0] / rate, w[1] / rate, w[2] / rate};
+    // Rodrigues: R = cos θ I + sin θ [a]× + (1 − cos θ) a aᵀ, θ = |ω| t
+    const double cos_t = std::cos(rate * t), sin_t = std::sin(rate * t), u = 1 - cos_t;
+    m.rotation = {cos_t + u * a[0] * a[0],        u * a[0] * a[1] - sin_t * a[2],
+                  u * a[0] * a[2] + sin_t * a[1], u * a[1] * a[0] + sin_t * a[2],
+                  cos_t + u * a[1] * a[1],        u * a[1] * a[2] - sin_t * a[0],
+                  u * a[2] * a[0] - sin_t * a[1], u * a[2] * a[1] + sin_t * a[0],
+                  cos_t + u * a[2] * a[2]};
+  }
+}
+
+Vec3 Dynamics::held_velocity(std::size_t k, int c) const {
+  const HeldMotion& m = motions_[c];
+  Vec3 v = m.velocity;
+  if (!m.rotates) return v;
   const double* x0 = &held_reference_[3 * k];
-  const Vec3 r0 = {x0[0] - s.center[0], x0[1] - s.center[1], x0[2] - s.center[2]};
-  // Rodrigues: r = r0 cos θ + (a × r0) sin θ + a (a·r0)(1 − cos θ), θ = |ω| t
-  const double angle = rate * t, cos_a = std::cos(angle), sin_a = std::sin(angle);
-  const double along = axis[0] * r0[0] + axis[1] * r0[1] + axis[2] * r0[2];
-  const Vec3 cross = {axis[1] * r0[2] - axis[2] * r0[1], axis[2] * r0[0] - axis[0] * r0[2],
-                      axis[0] * r0[1] - axis[1] * r0[0]};
+  const Vec3 r0 = {x0[0] - m.center[0], x0[1] - m.center[1], x0[2] - m.center[2]};
   Vec3 r;
   for (int d = 0; d < 3; ++d)
-    r[d] = r0[d] * cos_a + cross[d] * sin_a + axis[d] * along * (1 - cos_a);
+    r[d] =
+        m.rotation[3 * d] * r0[0] + m.rotation[3 * d + 1] * r0[1] + m.rotation[3 * d + 2] * r0[2];
+  const Vec3& w = m.angular_velocity;
   v[0] += w[1] * r[2] - w[2] * r[1];
   v[1] += w[2] * r[0] - w[0] * r[2];
   v[2] += w[0] * r[1] - w[1] * r[0];
@@ -128,19 +143,21 @@ void Dynamics::external_forces(const double* y, const double* v, double* f) {
 void Dynamics::held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const {
   particles.clear();
   velocities.clear();
+  set_motions(t);
   for (std::size_t k = 0; k < held_particles_.size(); ++k) {
     const int c = active_constraint(k, t);
     if (c < 0) continue;
     particles.push_back(held_particles_[k]);
-    velocities.push_back(held_velocity(k, c, t));
+    velocities.push_back(held_velocity(k, c));
   }
 }
 
 void Dynamics::constrain_velocity(double t, double* v) const {
+  set_motions(t);
   for (std::size_t k = 0; k < held_particles_.size(); ++k) {
     const int c = active_constraint(k, t);
     if (c < 0) continue;
-    const Vec3 velocity = held_velocity(k, c, t);
+    const Vec3 velocity = held_velocity(k, c);
     for (int d = 0; d < 3; ++d) v[3 * held_particles_[k] + d] = velocity[d];
   }
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The equation of motion the integrators advance: M ÿ = F_int(y) + M g − c M ẏ (Eq 2 with
 // gravity and mass-proportional damping), with kinematic constraints on regions.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -49,18 +50,27 @@ class Dynamics {
   int active_constraint(std::size_t k, double t) const;
   // Zeroes a where a constraint holds the particle at time t.
   void hold(double t, double* a) const;
-  // Velocity constraint c prescribes at time t for held particle held_particles_[k]: its
-  // velocity, plus ω × R(ωt)(x0 − centre) for a rotating one (x0 the reference position).
-  Vec3 held_velocity(std::size_t k, int c, double t) const;
+  // The rigid motion each constraint prescribes at one time: its velocity and, for a rotating
+  // one, ω, the centre and R(ωt) (row-major), computed once per loop over the held particles.
+  struct HeldMotion {
+    Vec3 velocity, angular_velocity, center;
+    std::array<double, 9> rotation;
+    bool rotates;
+  };
+  void set_motions(double t) const;
+  // Velocity motions_[c] gives held particle held_particles_[k]: the constraint's velocity, plus
+  // ω × R(ωt)(x0 − centre) for a rotating one (x0 the reference position).
+  Vec3 held_velocity(std::size_t k, int c) const;
 
   Model& model_;
   std::vector<double> mass_;
   double gravity_[3];
   double damping_;
   std::vector<Constraint> constraints_;
-  std::vector<int> held_particles_;     // particles inside at least one constraint region
-  std::vector<double> held_reference_;  // their reference positions, 3 per held particle
-  std::vector<int> held_offsets_;       // CSR: constraints holding each of held_particles_
+  std::vector<int> held_particles_;          // particles inside at least one constraint region
+  std::vector<double> held_reference_;       // their reference positions, 3 per held particle
+  mutable std::vector<HeldMotion> motions_;  // per constraint, at the time of the last loop
+  std::vector<int> held_offsets_;            // CSR: constraints holding each of held_particles_
   std::vector<int> held_by_;
   std::vector<double> force_;
   std::unique_ptr<Colliders> colliders_;

@@ -21,9 +21,10 @@ std::string relative_to(const std::string& study_file, const std::string& path) 
 
 // Adaptive runs (arkode without fixed_step) stop on every frame time by themselves; fixed-step
 // ones get a dt that divides the compare interval.
-bool adaptive(const YAML::Node& integrator) {
-  return integrator["type"] && integrator["type"].as<std::string>() == "arkode" &&
-         !(integrator["fixed_step"] && integrator["fixed_step"].as<std::string>() == "true");
+bool adaptive(const YamlReader& r, const YAML::Node& integrator, const std::string& path) {
+  const bool fixed_step =
+      integrator["fixed_step"] && r.boolean(integrator["fixed_step"], join(path, "fixed_step"));
+  return r.string(integrator["type"], join(path, "type")) == "arkode" && !fixed_step;
 }
 
 // The integrator block as a --set override of the whole `integrator` key (flow YAML).
@@ -86,7 +87,7 @@ StudyConfig load_study(const std::string& path) {
     if (reference["dt"]) {
       c.reference_run.parameter = "dt";
       c.reference_run.value = r.positive(reference["dt"], "reference.dt");
-    } else if (!adaptive(reference["integrator"])) {
+    } else if (!adaptive(r, reference["integrator"], "reference.integrator")) {
       r.fail("reference.dt", "missing: a fixed-step reference needs its step");
     }
   }
@@ -111,7 +112,7 @@ StudyConfig load_study(const std::string& path) {
     if (run["dt"] && run["rtol"]) r.fail(p, "sweep either dt or rtol, not both");
     if (!run["dt"] && !run["rtol"]) r.fail(p, "missing: a dt or rtol list to sweep");
     const std::string parameter = run["dt"] ? "dt" : "rtol";
-    if (parameter == "rtol" && !adaptive(run["integrator"]))
+    if (parameter == "rtol" && !adaptive(r, run["integrator"], join(p, "integrator")))
       r.fail(join(p, "rtol"),
              "an rtol sweep needs an adaptive integrator (arkode without "
              "fixed_step); sweep dt instead");

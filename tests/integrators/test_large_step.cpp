@@ -135,8 +135,9 @@ TEST(LargeStep, NewmarkKeepsTheEnergyWithinFivePercent) {
   EXPECT_LT(run.worst_drift, 0.05);
 }
 
-// Generalized-α (ρ∞ = 0.5) damps: 200 steps take the energy below 5% of the start (its damping of
-// the lowest bending mode, ωh ≈ 0.67 here, alone gives a few percent). Its first step overshoots,
+// Generalized-α (ρ∞ = 0.5) damps: after 200 steps the energy is below 5% of the start, where the
+// undamped Newmark of the test above ends at 1.01 E0 on the same release, so the bound fails for
+// any scheme that does not dissipate (measured 1.3%). Its first step overshoots,
 // as Hilber and Hughes (1978) describe for consistent initial accelerations (measured E = 4.4 E0
 // after step 1), so no per-step bound is asserted.
 TEST(LargeStep, GeneralizedAlphaStaysFiniteAndDamps) {
