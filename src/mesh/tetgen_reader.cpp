@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "mesh/geometry.hpp"
 #include "mesh/mesh_util.hpp"
+#include "mesh/tetgen_format.hpp"
 
 namespace fissure {
 
@@ -45,8 +46,7 @@ std::vector<Line> counted_lines(std::string_view text, const std::string& path, 
 }
 
 // Returns the numbering base (0 or 1) of the node indices.
-int read_nodes(const std::string& path, std::vector<double>& vertices) {
-  const std::string text = mesh_detail::read_file(path);
+int read_nodes(std::string_view text, const std::string& path, std::vector<double>& vertices) {
   long long count;
   const std::vector<Line> lines = counted_lines(text, path, count, "nodes");
   if (header_value(lines[0], 1, 3, path, "dimension") != 3) {
@@ -82,9 +82,8 @@ int read_nodes(const std::string& path, std::vector<double>& vertices) {
 }
 
 // Fills `tets` (0-based) and the file's element numbers, for error messages.
-void read_elements(const std::string& path, int base, long long vertex_count,
+void read_elements(std::string_view text, const std::string& path, int base, long long vertex_count,
                    std::vector<int>& tets, std::vector<long long>& numbers) {
-  const std::string text = mesh_detail::read_file(path);
   long long count;
   const std::vector<Line> lines = counted_lines(text, path, count, "tets");
   const long long corners = header_value(lines[0], 1, 4, path, "nodes per tet");
@@ -149,18 +148,25 @@ void orient(TetMesh& mesh, const std::vector<long long>& numbers, const std::str
 
 }  // namespace
 
+TetMesh mesh_detail::parse_tetgen(std::string_view node_text, std::string_view ele_text,
+                                  const std::string& node_path, const std::string& ele_path) {
+  TetMesh mesh;
+  const int base = read_nodes(node_text, node_path, mesh.vertices);
+  std::vector<long long> numbers;
+  read_elements(ele_text, ele_path, base, mesh.vertex_count(), mesh.tets, numbers);
+  orient(mesh, numbers, ele_path);
+  return mesh;
+}
+
 TetMesh read_tetgen(const std::string& path) {
   const std::string ext = mesh_detail::lowercase_extension(path);
   const std::string base_name =
       ext == ".node" || ext == ".ele" ? path.substr(0, path.size() - ext.size()) : path;
   const std::string node_path = base_name + ".node";
   const std::string ele_path = base_name + ".ele";
-  TetMesh mesh;
-  const int base = read_nodes(node_path, mesh.vertices);
-  std::vector<long long> numbers;
-  read_elements(ele_path, base, mesh.vertex_count(), mesh.tets, numbers);
-  orient(mesh, numbers, ele_path);
-  return mesh;
+  const std::string node_text = mesh_detail::read_file(node_path);
+  const std::string ele_text = mesh_detail::read_file(ele_path);
+  return mesh_detail::parse_tetgen(node_text, ele_text, node_path, ele_path);
 }
 
 }  // namespace fissure
