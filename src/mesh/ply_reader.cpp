@@ -99,9 +99,12 @@ Header parse_header(std::string_view data, const std::string& path) {
     } else if (tokens[0] == "property" && !h.elements.empty()) {
       Property p;
       const bool list = tokens.size() == 5 && tokens[1] == "list";
+      if (!list && tokens.size() != 3) {
+        fail_at_line(path, number, "property needs a type and a name (or list, two types, a name)");
+      }
       const std::optional<Type> type = parse_type(tokens[list ? 3 : 1]);
-      if (!type || (!list && tokens.size() != 3)) {
-        fail_at_line(path, number, "invalid property declaration");
+      if (!type) {
+        fail_at_line(path, number, fmt::format("unknown property type '{}'", tokens[list ? 3 : 1]));
       }
       p.type = *type;
       p.name = tokens.back();

@@ -146,16 +146,26 @@ void orient(TetMesh& mesh, const std::vector<long long>& numbers, const std::str
   }
 }
 
+// Nodes first: a malformed .node is reported even when the .ele is missing. `ele_text()` gives
+// the .ele contents (a string or string_view).
+template <class EleText>
+TetMesh parse_pair(std::string_view node_text, EleText&& ele_text, const std::string& node_path,
+                   const std::string& ele_path) {
+  TetMesh mesh;
+  const int base = read_nodes(node_text, node_path, mesh.vertices);
+  const auto ele = ele_text();
+  std::vector<long long> numbers;
+  read_elements(ele, ele_path, base, mesh.vertex_count(), mesh.tets, numbers);
+  orient(mesh, numbers, ele_path);
+  return mesh;
+}
+
 }  // namespace
 
 TetMesh mesh_detail::parse_tetgen(std::string_view node_text, std::string_view ele_text,
                                   const std::string& node_path, const std::string& ele_path) {
-  TetMesh mesh;
-  const int base = read_nodes(node_text, node_path, mesh.vertices);
-  std::vector<long long> numbers;
-  read_elements(ele_text, ele_path, base, mesh.vertex_count(), mesh.tets, numbers);
-  orient(mesh, numbers, ele_path);
-  return mesh;
+  return parse_pair(
+      node_text, [&] { return ele_text; }, node_path, ele_path);
 }
 
 TetMesh read_tetgen(const std::string& path) {
@@ -164,9 +174,9 @@ TetMesh read_tetgen(const std::string& path) {
       ext == ".node" || ext == ".ele" ? path.substr(0, path.size() - ext.size()) : path;
   const std::string node_path = base_name + ".node";
   const std::string ele_path = base_name + ".ele";
-  const std::string node_text = mesh_detail::read_file(node_path);
-  const std::string ele_text = mesh_detail::read_file(ele_path);
-  return mesh_detail::parse_tetgen(node_text, ele_text, node_path, ele_path);
+  return parse_pair(
+      mesh_detail::read_file(node_path), [&] { return mesh_detail::read_file(ele_path); },
+      node_path, ele_path);
 }
 
 }  // namespace fissure
