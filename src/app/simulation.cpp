@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "app/energy.hpp"
+#include "app/energy_ledger.hpp"
 #include "core/error.hpp"
 #include "fracture/fragments.hpp"
 #include "fracture/post_step.hpp"
@@ -51,10 +52,30 @@ double automatic_time_step(const Config& config, const Integrator& integrator, d
   return config.time.safety * stable_dt;
 }
 
+// s with JSON's special characters escaped.
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
+  }
+  return out;
+}
+
 // A JSON number, or null where the value is not finite (JSON has no inf or nan).
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "null"; }
 
 void write_summary(const std::string& path, const RunSummary& s) {
+  std::string energy;
+  for (const auto& [name, value] : s.energy)
+    energy +=
+        fmt::format("{}\n    \"{}\": {}", energy.empty() ? "" : ",", name, json_number(value));
+  if (!energy.empty()) energy += "\n  ";
   std::string statistics;
   for (const auto& [name, value] : s.integrator_statistics)
     statistics +=
@@ -67,12 +88,14 @@ void write_summary(const std::string& path, const RunSummary& s) {
         "  \"seconds_per_step\": {},\n  \"setup_seconds\": {},\n  \"peak_rss_mb\": {},\n"
         "  \"energy_drift\": {},\n  \"broken_bonds\": {},\n  \"fragments\": {},\n"
         "  \"post_steps\": {},\n  \"force_evaluations\": {},\n  \"integrator\": \"{}\",\n"
+        "  \"energy\": {{{}}},\n  \"message\": \"{}\",\n"
         "  \"integrator_statistics\": "
         "{{{}}}\n}}\n",
         s.status, s.particles, s.bonds, s.steps, json_number(s.dt), json_number(s.stable_dt),
         json_number(s.wall_seconds), json_number(s.seconds_per_step), json_number(s.setup_seconds),
         json_number(s.peak_rss_mb), json_number(s.energy_drift), s.broken_bonds, s.fragments,
-        s.post_steps, s.force_evaluations, s.integrator, statistics);
+        s.post_steps, s.force_evaluations, s.integrator, energy, json_escape(s.message),
+        statistics);
   });
 }
 
@@ -95,6 +118,15 @@ class Simulation {
  private:
   void write_frame();
   void sample_energy();
+  // Adds the step's work and losses to the ledger.
+  void book_step(double h, const std::vector<double>& before);
+  // Stops the run (RunError) when energy that no load put in exceeds
+  // integrator.energy_growth_limit of the energy scale: K + losses − (E(0) + work) bounds the
+  // balance from below because Π ≥ 0, so it needs no energy evaluation.
+  void check_energy_growth(double dt);
+  // Writes summary.json with `status` and `message`, then throws RunError(message).
+  [[noreturn]] void stop(const std::string& status, const std::string& message);
+  void finish_summary();
   void report_progress(Clock::time_point start, bool final);
 
   const Config& config_;
@@ -111,9 +143,11 @@ class Simulation {
   State state_;
   RunSummary summary_;
   int frame_ = 0;
-  // Energy ledger for energy_drift: E = kinetic + elastic + gravitational.
-  double initial_energy_ = 0, energy_scale_ = 0, constraint_work_ = 0, damping_loss_ = 0;
-  double last_energy_ = 0, last_sample_time_ = -1;
+  EnergyLedger ledger_;
+  double initial_gravity_energy_ = 0;  // U = −Σ m g·y at t = 0
+  double last_sample_time_ = -1;
+  bool sampled_ = false;
+  std::vector<double> previous_position_;  // y at the start of the step, for the load work
 };
 
 Simulation::Simulation(const Config& config, const RunOptions& options)
@@ -122,7 +156,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   scene_ = build_scene(config);
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
-  post_step_ = std::make_unique<PostStep>(scene_, *model_);
+  post_step_ = std::make_unique<PostStep>(scene_, *model_, true);
   summary_.integrator = config.integrator.type;
   summary_.particles = scene_.particles.count();
   summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
@@ -150,8 +184,8 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
                     config.time.end / summary_.dt, summary_.dt, max_steps));
   std::filesystem::create_directories(config.output.dir);
   clear_previous_output(config.output.dir);
-  probes_ =
-      std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles);
+  probes_ = std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles,
+                                        EnergyLedger::names());
   pvd_ = std::make_unique<PvdIndex>(config.output.dir + "/particles.pvd");
   if (config.output.embedded_mesh())
     surface_writer_ = std::make_unique<SurfaceWriter>(config.output.dir, config.output.surface,
@@ -183,16 +217,101 @@ void Simulation::write_frame() {
 }
 
 void Simulation::sample_energy() {
-  const double kinetic = kinetic_energy(scene_.particles.mass, state_.velocity);
-  const double elastic = model_->elastic_energy(state_.position.data());
-  const double total =
-      kinetic + elastic +
+  ledger_.kinetic = kinetic_energy(scene_.particles.mass, state_.velocity);
+  ledger_.elastic = model_->elastic_energy(state_.position.data());
+  const double gravity =
       gravitational_energy(scene_.particles.mass, state_.position, config_.gravity);
-  if (summary_.steps == 0) initial_energy_ = total;
-  energy_scale_ = std::max(energy_scale_, kinetic + std::abs(elastic));
-  last_energy_ = total - initial_energy_ - constraint_work_ + damping_loss_;
-  probes_->write_row(state_.time, kinetic, elastic, state_.position);
+  if (!sampled_) {
+    ledger_.initial = ledger_.kinetic + ledger_.elastic;
+    initial_gravity_energy_ = gravity;
+    sampled_ = true;
+  }
+  ledger_.gravity_work = initial_gravity_energy_ - gravity;
+  ledger_.scale = std::max({ledger_.scale, ledger_.kinetic + std::abs(ledger_.elastic),
+                            std::abs(ledger_.gravity_work) + std::abs(ledger_.constraint_work) +
+                                std::abs(ledger_.collider_work)});
+  std::vector<double> columns;
+  for (const auto& [name, value] : ledger_.entries()) columns.push_back(value);
+  probes_->write_row(state_.time, ledger_.kinetic, ledger_.elastic, state_.position, columns);
   last_sample_time_ = state_.time;
+}
+
+void Simulation::book_step(double h, const std::vector<double>& before) {
+  const Dynamics::Work work = dynamics_->load_work(before.data(), state_.position.data());
+  ledger_.constraint_work += work.constraints;
+  ledger_.collider_work += work.colliders;
+  ledger_.contact_loss -= work.self_contact;
+  if (config_.damping > 0)
+    ledger_.damping_loss +=
+        h * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
+  ledger_.plastic_dissipation = post_step_->released().plastic;
+  ledger_.fracture_release = post_step_->released().fracture;
+}
+
+void Simulation::check_energy_growth(double dt) {
+  const double limit = config_.integrator.energy_growth_limit;
+  if (limit <= 0) return;
+  const double kinetic = kinetic_energy(scene_.particles.mass, state_.velocity);
+  const bool gravity =
+      config_.gravity[0] != 0 || config_.gravity[1] != 0 || config_.gravity[2] != 0;
+  const double gravity_work =
+      gravity ? initial_gravity_energy_ -
+                    gravitational_energy(scene_.particles.mass, state_.position, config_.gravity)
+              : 0.0;
+  const double work = gravity_work + ledger_.constraint_work + ledger_.collider_work;
+  const double losses = ledger_.damping_loss + ledger_.contact_loss + ledger_.plastic_dissipation +
+                        ledger_.fracture_release;
+  const double excess = kinetic + losses - (ledger_.initial + work);
+  const double budget =
+      std::max({ledger_.scale,
+                std::abs(ledger_.initial) + std::abs(gravity_work) +
+                    std::abs(ledger_.constraint_work) + std::abs(ledger_.collider_work),
+                1e-300});
+  if (!(excess > limit * budget) && std::isfinite(excess)) return;
+  const std::string what = fmt::format(
+      "energy grew without a load to account for it at step {} (t = {:.6g} s): kinetic energy "
+      "{:.3g} J exceeds the initial energy plus the work put in ({:.3g} J) by {:.3g} times the "
+      "run's energy scale (integrator.energy_growth_limit = {:g})",
+      summary_.steps, state_.time, kinetic, ledger_.initial + work - losses, excess / budget,
+      limit);
+  const std::string advice =
+      integrator_->explicit_step()
+          ? fmt::format(
+                "the explicit integrator '{}' is unstable at dt = {:.3g} s; the stable "
+                "step estimate is {:.3g} s: use time.dt: auto or a time.dt of at most "
+                "{:.3g} s",
+                config_.integrator.type, dt, summary_.stable_dt, summary_.stable_dt)
+          : fmt::format(
+                "the integrator '{}' put energy in at dt = {:.3g} s: try a smaller "
+                "time.dt (the explicit stable estimate is {:.3g} s)",
+                config_.integrator.type, dt, summary_.stable_dt);
+  stop("unstable", fmt::format("{}; {}. Outputs up to this point are kept in {}", what, advice,
+                               config_.output.dir));
+}
+
+void Simulation::finish_summary() {
+  summary_.energy_drift = ledger_.balance_error();
+  summary_.energy = ledger_.entries();
+  summary_.energy.insert(summary_.energy.begin(), {{"kinetic", ledger_.kinetic},
+                                                   {"elastic", ledger_.elastic},
+                                                   {"initial", ledger_.initial},
+                                                   {"scale", ledger_.scale},
+                                                   {"balance", ledger_.balance()}});
+  summary_.wall_seconds = seconds_since(setup_start_);
+  summary_.peak_rss_mb = peak_rss_mb();
+  summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
+  summary_.fragments = count_fragments(scene_.families, *model_);
+  summary_.post_steps = static_cast<long>(post_step_->calls());
+  summary_.force_evaluations = dynamics_->force_evaluations();
+  summary_.integrator_statistics = integrator_->statistics();
+}
+
+void Simulation::stop(const std::string& status, const std::string& message) {
+  summary_.status = status;
+  summary_.message = message;
+  finish_summary();
+  write_summary(config_.output.dir + "/summary.json", summary_);
+  throw RunError(message);
 }
 
 void Simulation::report_progress(Clock::time_point start, bool final) {
@@ -236,30 +355,29 @@ RunSummary Simulation::run() {
       h = std::min(dt, end - state_.time);
       if (next_frame - state_.time > tolerance) h = std::min(h, next_frame - state_.time);
     }
-    h = integrator_->step(*dynamics_, state_, h);
+    previous_position_ = state_.position;
+    try {
+      h = integrator_->step(*dynamics_, state_, h);
+    } catch (const RunError& e) {
+      stop("failed", fmt::format("{}. Outputs up to t = {:.6g} s are kept in {}", e.what(),
+                                 state_.time, config_.output.dir));
+    }
     dynamics_->end_step(h);
     if (post_step_->run(state_.position.data(), state_.velocity.data(), h))
       integrator_->bonds_changed();
-    constraint_work_ += h * dynamics_->constraint_power();
-    if (config_.damping > 0)
-      damping_loss_ +=
-          h * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
     ++summary_.steps;
     if (const int bad = first_nonfinite(state_); bad >= 0) {
-      summary_.status = "nonfinite";
-      summary_.wall_seconds = seconds_since(setup_start_);
-      summary_.peak_rss_mb = peak_rss_mb();
-      summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
-      summary_.fragments = count_fragments(scene_.families, *model_);
-      write_summary(config_.output.dir + "/summary.json", summary_);
       const double* x = &scene_.particles.reference[3 * bad];
-      throw RunError(fmt::format(
-          "state became non-finite at step {} (t = {:.6g} s), first at particle {} of body '{}' "
-          "(reference position {:.6g}, {:.6g}, {:.6g}); dt = {:.3g} s, stable estimate {:.3g} s. "
-          "Outputs up to this point are kept in {}",
-          summary_.steps, state_.time, bad, config_.bodies[scene_.particles.body[bad]].name, x[0],
-          x[1], x[2], dt, summary_.stable_dt, config_.output.dir));
+      stop("nonfinite",
+           fmt::format(
+               "state became non-finite at step {} (t = {:.6g} s), first at particle {} of body "
+               "'{}' (reference position {:.6g}, {:.6g}, {:.6g}); dt = {:.3g} s, stable estimate "
+               "{:.3g} s. Outputs up to this point are kept in {}",
+               summary_.steps, state_.time, bad, config_.bodies[scene_.particles.body[bad]].name,
+               x[0], x[1], x[2], dt, summary_.stable_dt, config_.output.dir));
     }
+    book_step(h, previous_position_);
+    check_energy_growth(h);
     stepping_seconds += seconds_since(step_start);
     output_due();
     if (options_.progress && seconds_since(last_report) > 0.5) {
@@ -270,15 +388,8 @@ RunSummary Simulation::run() {
   if (options_.progress) report_progress(start, true);
   if (last_sample_time_ < state_.time) sample_energy();
   if (last_frame_time < state_.time) write_frame();
-  summary_.energy_drift = energy_scale_ > 0 ? last_energy_ / energy_scale_ : 0.0;
   summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
-  summary_.wall_seconds = seconds_since(setup_start_);
-  summary_.peak_rss_mb = peak_rss_mb();
-  summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
-  summary_.fragments = count_fragments(scene_.families, *model_);
-  summary_.post_steps = static_cast<long>(post_step_->calls());
-  summary_.force_evaluations = dynamics_->force_evaluations();
-  summary_.integrator_statistics = integrator_->statistics();
+  finish_summary();
   write_summary(config_.output.dir + "/summary.json", summary_);
   return summary_;
 }

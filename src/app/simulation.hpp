@@ -22,10 +22,14 @@ struct RunSummary {
   double seconds_per_step = 0;
   double setup_seconds = 0;
   double peak_rss_mb = 0;
-  double energy_drift = 0;
-  long broken_bonds = 0;  // each pair counted once, initial cracks included
-  long fragments = 0;     // connected components of intact bonds at the end
-  std::string status = "completed";
+  double energy_drift = 0;           // the energy ledger's balance error at the end (relative)
+  long broken_bonds = 0;             // each pair counted once, initial cracks included
+  long fragments = 0;                // connected components of intact bonds at the end
+  std::string status = "completed";  // completed | nonfinite | unstable | failed
+  std::string message;               // why a run stopped early
+  // The energy ledger at the end (app/energy_ledger.hpp): kinetic, elastic, initial, scale,
+  // balance, then probes.csv's ledger columns.
+  std::vector<std::pair<std::string, double>> energy;
   long post_steps = 0;         // calls of the shared post-step (one per accepted step)
   long force_evaluations = 0;  // evaluations of the model's internal forces
   std::string integrator;      // integrator.type
@@ -33,7 +37,8 @@ struct RunSummary {
 };
 
 // Runs the scene into config.output.dir. Throws InputError for unusable input and RunError when
-// the state turns non-finite (after writing summary.json with the failure).
+// the run cannot go on: the state turned non-finite, energy grew without a load putting it in,
+// or the integrator failed; summary.json then records the status and the message.
 RunSummary run_simulation(const Config& config, const RunOptions& options);
 
 double peak_rss_mb();

@@ -70,7 +70,9 @@ void BondBreaking::update_damage(int i) {
   damage_[i] = total > 0 ? 1.0 - static_cast<double>(intact_[i]) / total : 0.0;
 }
 
-std::size_t BondBreaking::run(const double* y) {
+std::size_t BondBreaking::run(const double* y) { return find(y) > 0 ? apply() : 0; }
+
+std::size_t BondBreaking::find(const double* y) {
   const int n = static_cast<int>(intact_.size());
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
@@ -99,7 +101,12 @@ std::size_t BondBreaking::run(const double* y) {
     }
   }
   changed_.clear();
-  if (exceeded == 0) return 0;
+  return exceeded;
+}
+
+std::size_t BondBreaking::apply() {
+  const int n = static_cast<int>(intact_.size());
+  const auto& off = families_.offsets;
   // A bond breaks in both rows when either row's criterion is exceeded; each row updates only
   // its own entries, so the rows can run in parallel.
   std::size_t removed = 0;

@@ -18,6 +18,10 @@ class BondBreaking {
   // Breaks every intact bond whose criterion exceeds s_c in either of its rows; returns how many
   // bonds (pairs) broke, so an integrator can be told that the bond set changed.
   std::size_t run(const double* y);
+  // run() in two halves: find() marks the bonds whose criterion is exceeded and returns how many
+  // (directed); apply() breaks them and returns how many pairs broke.
+  std::size_t find(const double* y);
+  std::size_t apply();
   // φ_i = 1 − n_i/N_i (Eq 19), N_i counted before the initial cracks.
   const std::vector<double>& damage() const { return damage_; }
   // 1 for each broken directed bond (CSR order).

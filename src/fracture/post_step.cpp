@@ -2,7 +2,8 @@
 
 namespace fissure {
 
-PostStep::PostStep(const Scene& scene, Model& model) : model_(model) {
+PostStep::PostStep(const Scene& scene, Model& model, bool measure_energy)
+    : model_(model), measure_energy_(measure_energy) {
   if (scene.config.fracture_enabled())
     bond_breaking_ = std::make_unique<BondBreaking>(scene, model);
   if (scene.config.output.embedded_mesh())
@@ -12,8 +13,19 @@ PostStep::PostStep(const Scene& scene, Model& model) : model_(model) {
 
 bool PostStep::run(const double* y, const double* velocity, double dt) {
   ++calls_;
-  model_.update_plasticity(y);
-  const bool changed = bond_breaking_ && bond_breaking_->run(y) > 0;
+  const bool measure_plastic = measure_energy_ && model_.plastic();
+  double stored = measure_plastic ? model_.elastic_energy(y) : 0;
+  if (model_.update_plasticity(y) > 0 && measure_plastic) {
+    const double after = model_.elastic_energy(y);
+    released_.plastic += stored - after;
+    stored = after;
+  }
+  bool changed = false;
+  if (bond_breaking_ && bond_breaking_->find(y) > 0) {
+    if (measure_energy_ && !measure_plastic) stored = model_.elastic_energy(y);
+    changed = bond_breaking_->apply() > 0;
+    if (measure_energy_) released_.fracture += stored - model_.elastic_energy(y);
+  }
   if (embedded_mesh_) {
     if (changed) embedded_mesh_->crack(bond_breaking_->broken(), bond_breaking_->changed());
     if (velocity) embedded_mesh_->advance(velocity, dt);

@@ -13,7 +13,10 @@ namespace fissure {
 
 class PostStep {
  public:
-  PostStep(const Scene& scene, Model& model);
+  // With measure_energy, run() also books the stored energy the return map and bond breaking
+  // release at fixed positions (released()): one or two extra energy evaluations on the steps
+  // where bonds yield or break, and one per step before the return map of a plastic scene.
+  PostStep(const Scene& scene, Model& model, bool measure_energy = false);
   // Returns true if the bond set changed, so the integrator must drop what it derived from it.
   // `velocity` and the step `dt` move the embedded mesh's vertices with `surface_motion:
   // velocity` (Eq 22).
@@ -23,6 +26,12 @@ class PostStep {
   std::size_t broken_bonds() const;
   // How many times run() was called: one per accepted step, whichever integrator ran.
   std::size_t calls() const { return calls_; }
+  // Energy released so far at fixed positions [J]: by the plastic return map (Π(e^p_old) −
+  // Π(e^p_new), plastic dissipation) and by broken bonds (Π before − Π after breaking).
+  struct Released {
+    double plastic = 0, fracture = 0;
+  };
+  const Released& released() const { return released_; }
   // The embedded tet mesh, or nullptr unless the config writes surfaces or tets.
   EmbeddedMesh* embedded_mesh() { return embedded_mesh_.get(); }
 
@@ -31,6 +40,8 @@ class PostStep {
   std::unique_ptr<BondBreaking> bond_breaking_;
   std::unique_ptr<EmbeddedMesh> embedded_mesh_;
   std::size_t calls_ = 0;
+  bool measure_energy_;
+  Released released_;
 };
 
 }  // namespace fissure

@@ -23,8 +23,16 @@ Dynamics::Dynamics(const Scene& scene, Model& model)
     held_offsets_.push_back(static_cast<int>(held_by_.size()));
   }
   force_.resize(3 * mass_.size());
-  if (!scene.config.colliders.empty()) colliders_ = std::make_unique<Colliders>(scene);
-  if (scene.config.contact.self) self_contact_ = std::make_unique<SelfContact>(scene, model);
+  implicit_reaction_.assign(3 * held_particles_.size(), 0.0);
+  explicit_reaction_.assign(3 * held_particles_.size(), 0.0);
+  if (!scene.config.colliders.empty()) {
+    colliders_ = std::make_unique<Colliders>(scene);
+    collider_force_.resize(3 * mass_.size());
+  }
+  if (scene.config.contact.self) {
+    self_contact_ = std::make_unique<SelfContact>(scene, model);
+    self_contact_force_.resize(3 * mass_.size());
+  }
 }
 
 void Dynamics::end_step(double h) {
@@ -44,8 +52,7 @@ void Dynamics::internal_forces(const double* y, double* f) {
 
 void Dynamics::acceleration(double t, const double* y, const double* v, double* a) {
   internal_forces(y, force_.data());
-  if (colliders_) colliders_->add_forces(y, v, force_.data());
-  if (self_contact_) self_contact_->add_forces(y, force_.data());
+  add_contact_forces(y, v, force_.data());
   const int n = static_cast<int>(mass_.size());
   const double c = damping_;
 #pragma omp parallel for schedule(static)
@@ -54,20 +61,56 @@ void Dynamics::acceleration(double t, const double* y, const double* v, double* 
     for (int k = 0; k < 3; ++k)
       a[3 * i + k] = force_[3 * i + k] * inv_m + gravity_[k] - c * v[3 * i + k];
   }
-  // A held particle's reaction is m (a_prescribed − a_free); a_prescribed ⟂ v (uniform
-  // translation and rotation), so its power is −m a_free·v.
-  constraint_power_ = 0;
-  set_motions(t);
-  for (std::size_t k = 0; k < held_particles_.size(); ++k) {
-    const int c = active_constraint(k, t);
-    if (c < 0) continue;
-    const int i = held_particles_[k];
-    const Vec3 velocity = held_velocity(k, c);
-    for (int d = 0; d < 3; ++d) {
-      constraint_power_ -= mass_[i] * a[3 * i + d] * velocity[d];
-      a[3 * i + d] = 0;
-    }
+  hold(t, a, implicit_reaction_);
+  std::fill(explicit_reaction_.begin(), explicit_reaction_.end(), 0.0);
+}
+
+// Adds `source` to `f` in parallel.
+static void add_to(const std::vector<double>& source, double* f) {
+  const std::size_t n = source.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) f[k] += source[k];
+}
+
+void Dynamics::add_contact_forces(const double* y, const double* v, double* f) {
+  if (colliders_) {
+    std::fill(collider_force_.begin(), collider_force_.end(), 0.0);
+    colliders_->add_forces(y, v, collider_force_.data());
+    add_to(collider_force_, f);
   }
+  if (self_contact_) {
+    std::fill(self_contact_force_.begin(), self_contact_force_.end(), 0.0);
+    self_contact_->add_forces(y, v, self_contact_force_.data());
+    add_to(self_contact_force_, f);
+  }
+}
+
+Dynamics::Work Dynamics::load_work(const double* before, const double* after) const {
+  Work w;
+  for (std::size_t k = 0; k < held_particles_.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      const int u = 3 * held_particles_[k] + d;
+      const double reaction = implicit_reaction_[3 * k + d] + explicit_reaction_[3 * k + d];
+      w.constraints += reaction * (after[u] - before[u]);
+    }
+  auto work_of = [&](const std::vector<double>& force) {
+    double sum = 0;
+    const std::size_t n = force.size();
+#pragma omp parallel for reduction(+ : sum) schedule(static)
+    for (std::size_t k = 0; k < n; ++k) sum += force[k] * (after[k] - before[k]);
+    return sum;
+  };
+  w.colliders = work_of(collider_force_);
+  w.self_contact = work_of(self_contact_force_);
+  return w;
+}
+
+void Dynamics::set_constraint_reactions(const std::vector<double>& reaction) {
+  for (std::size_t k = 0; k < held_particles_.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      implicit_reaction_[3 * k + d] = reaction[3 * held_particles_[k] + d];
+      explicit_reaction_[3 * k + d] = 0;
+    }
 }
 
 void Dynamics::set_motions(double t) const {
@@ -107,10 +150,18 @@ Vec3 Dynamics::held_velocity(std::size_t k, int c) const {
   return v;
 }
 
-void Dynamics::hold(double t, double* a) const {
-  for (std::size_t k = 0; k < held_particles_.size(); ++k)
-    if (active_constraint(k, t) >= 0)
-      for (int d = 0; d < 3; ++d) a[3 * held_particles_[k] + d] = 0;
+void Dynamics::hold(double t, double* a, std::vector<double>& reaction) const {
+  // A held particle's reaction is m (a_prescribed − a_free); a_prescribed ⟂ v (uniform
+  // translation and rotation) does no work, so the ledger books −m a_free.
+  set_motions(t);
+  for (std::size_t k = 0; k < held_particles_.size(); ++k) {
+    const int i = held_particles_[k];
+    const bool active = active_constraint(k, t) >= 0;
+    for (int d = 0; d < 3; ++d) {
+      reaction[3 * k + d] = active ? -mass_[i] * a[3 * i + d] : 0.0;
+      if (active) a[3 * i + d] = 0;
+    }
+  }
 }
 
 void Dynamics::implicit_acceleration(double t, const double* y, const double* v, double* a) {
@@ -120,7 +171,7 @@ void Dynamics::implicit_acceleration(double t, const double* y, const double* v,
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k)
       a[3 * i + k] = force_[3 * i + k] / mass_[i] - damping_ * v[3 * i + k];
-  hold(t, a);
+  hold(t, a, implicit_reaction_);
 }
 
 void Dynamics::explicit_acceleration(double t, const double* y, const double* v, double* a) {
@@ -129,15 +180,14 @@ void Dynamics::explicit_acceleration(double t, const double* y, const double* v,
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) a[3 * i + k] /= mass_[i];
-  hold(t, a);
+  hold(t, a, explicit_reaction_);
 }
 
 void Dynamics::external_forces(const double* y, const double* v, double* f) {
   const int n = static_cast<int>(mass_.size());
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) f[3 * i + k] = mass_[i] * gravity_[k];
-  if (colliders_) colliders_->add_forces(y, v, f);
-  if (self_contact_) self_contact_->add_forces(y, f);
+  add_contact_forces(y, v, f);
 }
 
 void Dynamics::held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const {

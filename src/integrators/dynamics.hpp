@@ -17,7 +17,7 @@ class Dynamics {
   Dynamics(const Scene& scene, Model& model);
 
   // a = F_int(y)/m + g − c v, zero where a constraint holds the particle at time t.
-  // Also records the power the constraints put in (constraint_power()).
+  // Also records the forces of the constraints and the contacts (load_work()).
   void acceleration(double t, const double* y, const double* v, double* a);
   // The same split in two, for implicit–explicit methods: a = implicit + explicit.
   //   implicit: F_int(y)/m − c v (stiff, elastic);  explicit: g + F_contact(y, v)/m.
@@ -41,15 +41,25 @@ class Dynamics {
   void end_step(double h);
   // The colliders, or nullptr when the scene has none.
   const Colliders* colliders() const { return colliders_.get(); }
-  // Power of the constraint reactions at the last acceleration() call [W].
-  double constraint_power() const { return constraint_power_; }
+  // Work the constraints, colliders and self-contact did on the particles over a step from
+  // positions `before` to `after`, with the forces of their last evaluation: Σ F·Δy [J].
+  struct Work {
+    double constraints = 0, colliders = 0, self_contact = 0;
+  };
+  Work load_work(const double* before, const double* after) const;
+  // For integrators that hold particles through their own equations (petsc_newton): the
+  // constraint reactions they computed, 3N (read on held particles only).
+  void set_constraint_reactions(const std::vector<double>& reaction);
 
  private:
   // The constraint holding particle held_particles_[k] at time t: the last one in config order
   // that contains it and is not yet released, or −1.
   int active_constraint(std::size_t k, double t) const;
-  // Zeroes a where a constraint holds the particle at time t.
-  void hold(double t, double* a) const;
+  // Zeroes a where a constraint holds the particle at time t; records the reactions −m a_free,
+  // 3 per held particle, into `reaction`.
+  void hold(double t, double* a, std::vector<double>& reaction) const;
+  // Adds the colliders' and self-contact forces to f and records them.
+  void add_contact_forces(const double* y, const double* v, double* f);
   // The rigid motion each constraint prescribes at one time: its velocity and, for a rotating
   // one, ω, the centre and R(ωt) (row-major), computed once per loop over the held particles.
   struct HeldMotion {
@@ -75,7 +85,10 @@ class Dynamics {
   std::vector<double> force_;
   std::unique_ptr<Colliders> colliders_;
   std::unique_ptr<SelfContact> self_contact_;
-  double constraint_power_ = 0;
+  // Reactions of the constraints (3 per held particle) at the last evaluation, split as the
+  // implicit–explicit evaluations split the acceleration (their sum is the reaction).
+  std::vector<double> implicit_reaction_, explicit_reaction_;
+  std::vector<double> collider_force_, self_contact_force_;  // 3N, at the last evaluation
   long force_evaluations_ = 0;
 };
 

@@ -65,6 +65,13 @@ void NewtonSystem::residual(const double* z, double* r) {
     r[k] = fixed_[k] ? 0.0 : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] - external_[k];
 }
 
+std::vector<double> NewtonSystem::reactions() const {
+  std::vector<double> reaction(fixed_.size(), 0.0);
+  for (std::size_t k = 0; k < fixed_.size(); ++k)
+    if (fixed_[k]) reaction[k] = -(force_[k] + external_[k]);
+  return reaction;
+}
+
 void NewtonSystem::hessian(const double* z) {
   Model& model = dynamics_.model();
   if (tangent_ == "majoriser")

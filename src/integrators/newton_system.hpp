@@ -32,6 +32,9 @@ class NewtonSystem {
   // The size of the terms of the last objective() value: changes of E below about 1e-13 of it
   // are round-off, which no line search can resolve.
   double objective_magnitude() const { return magnitude_; }
+  // The constraint reactions at the last residual() point, 3N: −(F_int + f) on held unknowns
+  // (their prescribed acceleration does no work), 0 elsewhere.
+  std::vector<double> reactions() const;
 
  private:
   Dynamics& dynamics_;

@@ -41,6 +41,7 @@ struct PetscNewton::Solver {
   long steps = 0, newton_iterations = 0, linear_solves = 0, line_search_cuts = 0;
   long factorizations = 0, function_evaluations = 0, objective_evaluations = 0;
   long tangent_fallbacks = 0;  // auto: steps redone with the projected tangent
+  long step_halvings = 0;      // failed steps redone as two halves
   bool options_checked = false;
 };
 
@@ -201,6 +202,33 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
     set_up_petsc(*solver_, settings_, file_);
   }
   Solver& s = *solver_;
+  // static: the load ramp counts increments, so a failed one is not split
+  advance(dynamics, state, dt, s.scheme.is_static() ? 0 : settings_.max_step_halvings);
+  return dt;
+}
+
+void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
+  Solver& s = *solver_;
+  const State start = state;
+  const std::vector<double> acceleration = s.acceleration;
+  const std::string failure = attempt(dynamics, state, dt);
+  if (failure.empty()) return;
+  if (halvings == 0)
+    throw RunError(settings_.max_step_halvings > 0 && !s.scheme.is_static()
+                       ? fmt::format("{} (the step was already halved {} times: "
+                                     "integrator.max_step_halvings)",
+                                     failure, settings_.max_step_halvings)
+                       : failure);
+  // Fallback: redo the step as two halves, each halved again where it fails.
+  state = start;
+  s.acceleration = acceleration;
+  ++s.step_halvings;
+  advance(dynamics, state, 0.5 * dt, halvings - 1);
+  advance(dynamics, state, 0.5 * dt, halvings - 1);
+}
+
+std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
+  Solver& s = *solver_;
   if (!s.have_acceleration) {
     s.acceleration.resize(state.position.size());
     dynamics.acceleration(state.time, state.position.data(), state.velocity.data(),
@@ -245,17 +273,17 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
       solve("projected");
     }
   } else if (!solve(settings_.tangent) && reason == SNES_DIVERGED_LINEAR_SOLVE) {
-    throw RunError(fmt::format(
+    return fmt::format(
         "petsc_newton ({}): the linear solve failed in the step from t = {:.6g} s: the '{}' "
         "tangent is not positive definite there; use integrator.tangent: auto or projected",
-        settings_.scheme, state.time, settings_.tangent));
+        settings_.scheme, state.time, settings_.tangent);
   }
   if (reason < 0)
-    throw RunError(fmt::format(
+    return fmt::format(
         "petsc_newton ({}): Newton did not converge in the step from t = {:.6g} s with dt = "
         "{:.3g} s: {} after {} iterations. Try a smaller time.dt, or raise -snes_max_it or "
         "loosen -snes_rtol in integrator.petsc_options",
-        settings_.scheme, state.time, dt, SNESConvergedReasons[reason], iterations));
+        settings_.scheme, state.time, dt, SNESConvergedReasons[reason], iterations);
   if (!s.options_checked) {
     warn_unused_options(s, file_);
     s.options_checked = true;
@@ -265,10 +293,11 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
   std::copy(solution, solution + z.size(), z.begin());
   VecRestoreArrayRead(s.unknowns, &solution);
   s.scheme.correct(z, state, s.acceleration, dt);
+  dynamics.set_constraint_reactions(s.system.reactions());
   state.time += dt;
   dynamics.constrain_velocity(state.time, state.velocity.data());
   ++s.steps;
-  return dt;
+  return {};
 }
 
 Statistics PetscNewton::statistics() const {
@@ -279,6 +308,7 @@ Statistics PetscNewton::statistics() const {
           {"line_search_cuts", double(s.line_search_cuts)},
           {"factorizations", double(s.factorizations)},
           {"tangent_fallbacks", double(s.tangent_fallbacks)},
+          {"step_halvings", double(s.step_halvings)},
           {"residual_evaluations", double(s.function_evaluations)},
           {"objective_evaluations", double(s.objective_evaluations)}};
 }

@@ -22,6 +22,11 @@ class PetscNewton final : public Integrator {
   struct Solver;  // the PETSc objects
 
  private:
+  // Advances by dt; where Newton fails, redoes the step as two halves, up to `halvings` deep.
+  void advance(Dynamics& dynamics, State& state, double dt, int halvings);
+  // One step of dt: empty on success, else why it failed (state then undefined).
+  std::string attempt(Dynamics& dynamics, State& state, double dt);
+
   IntegratorSettings settings_;
   std::string file_;
   std::unique_ptr<Solver> solver_;

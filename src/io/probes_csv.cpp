@@ -6,7 +6,8 @@
 
 namespace fissure {
 
-ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles)
+ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
+                     const std::vector<std::string>& extra_columns, bool append)
     : particles_(particles) {
   for (std::size_t p = 0; p < config.probes.size(); ++p) {
     std::vector<int> members;
@@ -17,18 +18,20 @@ ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Partic
                        fmt::format("probe '{}' contains no particle", config.probes[p].name));
     members_.push_back(std::move(members));
   }
-  out_.open(path, std::ios::trunc);
+  out_.open(path, append ? std::ios::app : std::ios::trunc);
   if (!out_) throw RunError("cannot write " + path);
+  if (append) return;
   out_ << "time,kinetic_energy,elastic_energy";
   for (const auto& probe : config.probes)
     for (const char* column : {"pos_x", "pos_y", "pos_z", "disp_x", "disp_y", "disp_z"})
       out_ << ',' << probe.name << '.' << column;
+  for (const std::string& column : extra_columns) out_ << ',' << column;
   out_ << '\n';
   out_.flush();
 }
 
 void ProbesCsv::write_row(double time, double kinetic_energy, double elastic_energy,
-                          const std::vector<double>& position) {
+                          const std::vector<double>& position, const std::vector<double>& extra) {
   out_ << fmt::format("{:.9g},{:.9g},{:.9g}", time, kinetic_energy, elastic_energy);
   for (const auto& members : members_) {
     double pos[3] = {0, 0, 0}, disp[3] = {0, 0, 0};
@@ -41,6 +44,7 @@ void ProbesCsv::write_row(double time, double kinetic_energy, double elastic_ene
     for (double v : pos) out_ << fmt::format(",{:.9g}", v * inv);
     for (double v : disp) out_ << fmt::format(",{:.9g}", v * inv);
   }
+  for (double v : extra) out_ << fmt::format(",{:.9g}", v);
   out_ << '\n';
   out_.flush();
 }

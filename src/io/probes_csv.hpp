@@ -1,7 +1,8 @@
 #pragma once
 // probes.csv: one row per probe time, flushed as it goes. Columns: time, kinetic_energy,
 // elastic_energy, then per probe NAME.pos_{x,y,z} and NAME.disp_{x,y,z} (means over the
-// particles whose reference position lies in the probe's region).
+// particles whose reference position lies in the probe's region), then the extra columns (the
+// energy ledger's).
 #include <fstream>
 #include <string>
 #include <vector>
@@ -13,10 +14,12 @@ namespace fissure {
 
 class ProbesCsv {
  public:
-  // Throws InputError if a probe region holds no particle.
-  ProbesCsv(const std::string& path, const Config& config, const Particles& particles);
+  // Throws InputError if a probe region holds no particle. With `append` the rows go after
+  // those already in the file (a resumed run) and no header is written.
+  ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
+            const std::vector<std::string>& extra_columns, bool append = false);
   void write_row(double time, double kinetic_energy, double elastic_energy,
-                 const std::vector<double>& position);
+                 const std::vector<double>& position, const std::vector<double>& extra);
 
  private:
   std::ofstream out_;

@@ -327,10 +327,10 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
   r.require_map(node, "integrator");
   IntegratorSettings s;
   if (node["type"]) s.type = r.string(node["type"], "integrator.type");
-  const std::vector<std::string> petsc = {"scheme", "rho_infinity", "steps", "tangent",
-                                          "petsc_options"};
+  const std::vector<std::string> petsc = {"scheme",  "rho_infinity",  "steps",
+                                          "tangent", "petsc_options", "max_step_halvings"};
   const std::vector<std::string> arkode = {"method", "rtol", "atol", "fixed_step"};
-  std::vector<std::string> allowed = {"type", "allow_unstable_dt"};
+  std::vector<std::string> allowed = {"type", "allow_unstable_dt", "energy_growth_limit"};
   if (s.type == "petsc_newton") allowed.insert(allowed.end(), petsc.begin(), petsc.end());
   if (s.type == "arkode") allowed.insert(allowed.end(), arkode.begin(), arkode.end());
   for (const auto& key : petsc)
@@ -342,6 +342,17 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
   r.check_keys(node, "integrator", allowed);
   if (node["allow_unstable_dt"])
     s.allow_unstable_dt = r.boolean(node["allow_unstable_dt"], "integrator.allow_unstable_dt");
+  if (node["energy_growth_limit"])
+    s.energy_growth_limit =
+        r.non_negative(node["energy_growth_limit"], "integrator.energy_growth_limit");
+  if (node["max_step_halvings"]) {
+    const double halvings =
+        r.non_negative(node["max_step_halvings"], "integrator.max_step_halvings");
+    if (halvings != std::floor(halvings) || halvings > 20)
+      r.fail("integrator.max_step_halvings",
+             fmt::format("must be a whole number from 0 to 20, got {}", halvings));
+    s.max_step_halvings = static_cast<int>(halvings);
+  }
   auto one_of = [&](const char* key, std::string& value, const std::vector<std::string>& valid) {
     if (!node[key]) return;
     value = r.string(node[key], std::string("integrator.") + key);

@@ -128,6 +128,10 @@ struct TimeSettings {
 struct IntegratorSettings {
   std::string type = "symplectic_euler";
   bool allow_unstable_dt = false;  // explicit: run even when time.dt exceeds the stable estimate
+  // The run stops as unstable once energy that no load put in exceeds this fraction of the
+  // run's energy scale (the ledger's balance with Π ≥ 0, checked every step); 0 turns it off.
+  double energy_growth_limit = 1.0;
+  int max_step_halvings = 4;  // petsc_newton: halvings of a step whose Newton solve fails
   // petsc_newton
   std::string scheme = "backward_euler";  // backward_euler | newmark | alpha | static
   double rho_infinity = 0.5;              // alpha: spectral radius at infinite frequency

@@ -95,8 +95,9 @@ TEST(BadInput, MissingConfigFile) {
       << outcome.output;
 }
 
-// dt far above the stable step: the run stops with step, time and particle, exit code 3, and the
-// probes and frames written so far stay on disk.
+// dt far above the stable step with the energy-growth check off: the run stops at the first
+// non-finite state with step, time and particle, exit code 3, and the probes and frames written
+// so far stay on disk (the safety net behind the energy check, tests/stability/).
 TEST(BadInput, NonFiniteStateStopsWithStepTimeAndParticle) {
   const auto dir = test::scratch_dir("nonfinite");
   const auto config = dir / "scene.yaml";
@@ -110,7 +111,8 @@ TEST(BadInput, NonFiniteStateStopsWithStepTimeAndParticle) {
   const auto out = dir / "out";
   const auto outcome = test::run_fissure("run " + config.string() + " --out " + out.string() +
                                          " --set time.dt=1e-2 --set time.end=1.0" +
-                                         " --set integrator.allow_unstable_dt=true");
+                                         " --set integrator.allow_unstable_dt=true" +
+                                         " --set integrator.energy_growth_limit=0");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("warning: "), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("state became non-finite at step"), std::string::npos)
