@@ -68,10 +68,9 @@ double Colliders::penetration(const State& c, const double* y, double radius, do
 
 void Colliders::add_forces(const double* y, const double* v, double* f) {
   const int n = static_cast<int>(radius_.size());
-  power_ = 0;
   for (State& c : state_) {
-    double rx = 0, ry = 0, rz = 0, power = 0;
-#pragma omp parallel for reduction(+ : rx, ry, rz, power) schedule(static)
+    double rx = 0, ry = 0, rz = 0;
+#pragma omp parallel for reduction(+ : rx, ry, rz) schedule(static)
     for (int i = 0; i < n; ++i) {
       double normal[3];
       const double depth = penetration(c, y + 3 * i, radius_[i], normal);
@@ -93,14 +92,12 @@ void Colliders::add_forces(const double* y, const double* v, double* f) {
       for (int k = 0; k < 3; ++k) {
         force[k] = pressing * normal[k] - drag * tangential[k];
         f[3 * i + k] += force[k];
-        power += force[k] * v[3 * i + k];
       }
       rx -= force[0];
       ry -= force[1];
       rz -= force[2];
     }
     c.reaction = {rx, ry, rz};
-    power_ += power;
   }
 }
 

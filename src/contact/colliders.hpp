@@ -17,8 +17,6 @@ class Colliders {
   void advance(double h);
   // Momentum of the dynamic colliders, for balances.
   std::array<double, 3> momentum() const;
-  // Power the colliders put into the particles at the last add_forces, Σ F_i·v_i [W].
-  double power() const { return power_; }
 
  private:
   struct State {
@@ -35,7 +33,6 @@ class Colliders {
   std::vector<double> stiffness_;  // penalty stiffness per particle [N/m]
   double friction_;
   std::array<double, 3> gravity_;
-  double power_ = 0;
 };
 
 }  // namespace fissure

@@ -54,17 +54,15 @@ void SelfContact::build_grid(const double* y) {
   for (int i = 0; i < n; ++i) cell_particles_[next[cell_of_[i]]++] = i;
 }
 
-void SelfContact::add_forces(const double* y, const double* v, double* f) {
+void SelfContact::add_forces(const double* y, double* f) {
   // A non-finite state has no geometry to search; the run loop stops on it after this step.
-  power_ = 0;
   for (std::size_t k = 0; k < 3 * radius_.size(); ++k)
     if (!std::isfinite(y[k])) return;
   build_grid(y);
   const int n = static_cast<int>(radius_.size());
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
-  double power = 0;
-#pragma omp parallel for reduction(+ : power) schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) {
     const int c = cell_of_[i];
     const int ci[3] = {c % dims_[0], (c / dims_[0]) % dims_[1], c / (dims_[0] * dims_[1])};
@@ -92,12 +90,8 @@ void SelfContact::add_forces(const double* y, const double* v, double* f) {
             for (int k = 0; k < 3; ++k) force[k] += push * d[k] / distance;
           }
         }
-    for (int k = 0; k < 3; ++k) {
-      f[3 * i + k] += force[k];
-      power += force[k] * v[3 * i + k];
-    }
+    for (int k = 0; k < 3; ++k) f[3 * i + k] += force[k];
   }
-  power_ = power;
 }
 
 }  // namespace fissure

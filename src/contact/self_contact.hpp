@@ -13,12 +13,8 @@ class SelfContact {
  public:
   SelfContact(const Scene& scene, const Model& model);
   // Adds the repulsion k (d_c − d) n between every unbonded pair closer than d_c = r_i + r_j to
-  // f (3N), with r = ½V^(1/3) and k the mean of the two particles' contact stiffness. Records
-  // the power of these forces at velocities v.
-  void add_forces(const double* y, const double* v, double* f);
-  // Power of the repulsion at the last add_forces, Σ F_i·v_i [W] (negative while particles
-  // press together: the penalty stores it).
-  double power() const { return power_; }
+  // f (3N), with r = ½V^(1/3) and k the mean of the two particles' contact stiffness.
+  void add_forces(const double* y, double* f);
 
  private:
   void build_grid(const double* y);
@@ -32,7 +28,6 @@ class SelfContact {
   double origin_[3] = {0, 0, 0};
   int dims_[3] = {1, 1, 1};
   std::vector<int> cell_start_, cell_particles_, cell_of_;
-  double power_ = 0;
 };
 
 }  // namespace fissure

@@ -80,7 +80,7 @@ void Dynamics::add_contact_forces(const double* y, const double* v, double* f) {
   }
   if (self_contact_) {
     std::fill(self_contact_force_.begin(), self_contact_force_.end(), 0.0);
-    self_contact_->add_forces(y, v, self_contact_force_.data());
+    self_contact_->add_forces(y, self_contact_force_.data());
     add_to(self_contact_force_, f);
   }
 }
