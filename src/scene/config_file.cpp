@@ -1,6 +1,7 @@
 #include "scene/config_file.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 
 #include <filesystem>
 #include <fstream>
@@ -61,6 +62,12 @@ YAML::Node parse_yaml(const std::string& text, const std::string& file) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own message for this is "bad file".
+    throw InputError(file, "",
+                     fmt::format("not valid YAML (line {}, column {}): nested more than {} levels "
+                                 "deep",
+                                 e.mark.line + 1, e.mark.column + 1, e.depth() - 1));
   } catch (const YAML::Exception& e) {
     throw InputError(file, "",
                      fmt::format("not valid YAML (line {}, column {}): {}", e.mark.line + 1,

@@ -73,6 +73,13 @@ TEST(Config, MalformedYamlGivesLine) {
   EXPECT_NE(e.find("scene.yaml: not valid YAML (line"), std::string::npos) << e;
 }
 
+// yaml-cpp stops at its depth limit with the message "bad file"; the error says what is wrong.
+TEST(Config, DeeplyNestedYamlIsNamed) {
+  const std::string e = error_of("time: " + std::string(100000, '['));
+  EXPECT_NE(e.find("scene.yaml: not valid YAML (line 1, column"), std::string::npos) << e;
+  EXPECT_NE(e.find("levels deep"), std::string::npos) << e;
+}
+
 TEST(Config, ConstraintNeedsFixOrVelocity) {
   const std::string e = error_of(
       std::string(kMinimal) + "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}}\n");
