@@ -13,16 +13,4 @@ double kinetic_energy(const std::vector<double>& mass, const std::vector<double>
   return 0.5 * sum;
 }
 
-double gravitational_energy(const std::vector<double>& mass, const std::vector<double>& position,
-                            const Vec3& g) {
-  double sum = 0;
-  const int n = static_cast<int>(mass.size());
-#pragma omp parallel for reduction(+ : sum) schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double* y = &position[3 * i];
-    sum -= mass[i] * (g[0] * y[0] + g[1] * y[1] + g[2] * y[2]);
-  }
-  return sum;
-}
-
 }  // namespace fissure

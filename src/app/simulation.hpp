@@ -22,6 +22,7 @@ struct RunSummary {
   double seconds_per_step = 0;
   double setup_seconds = 0;
   double peak_rss_mb = 0;
+  double max_speed = 0;              // the largest particle speed at a probe row [m/s]
   double energy_drift = 0;           // the energy ledger's balance error at the end (relative)
   long broken_bonds = 0;             // each pair counted once, initial cracks included
   long fragments = 0;                // connected components of intact bonds at the end

@@ -102,6 +102,15 @@ Dynamics::Work Dynamics::load_work(const double* before, const double* after) co
   };
   w.colliders = work_of(collider_force_);
   w.self_contact = work_of(self_contact_force_);
+  if (gravity_[0] != 0 || gravity_[1] != 0 || gravity_[2] != 0) {
+    const int n = static_cast<int>(mass_.size());
+    double sum = 0;
+#pragma omp parallel for reduction(+ : sum) schedule(static)
+    for (int i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d)
+        sum += mass_[i] * gravity_[d] * (after[3 * i + d] - before[3 * i + d]);
+    w.gravity = sum;
+  }
   return w;
 }
 

@@ -41,10 +41,11 @@ class Dynamics {
   void end_step(double h);
   // The colliders, or nullptr when the scene has none.
   const Colliders* colliders() const { return colliders_.get(); }
-  // Work the constraints, colliders and self-contact did on the particles over a step from
-  // positions `before` to `after`, with the forces of their last evaluation: Σ F·Δy [J].
+  // Work gravity, the constraints, colliders and self-contact did on the particles over a step
+  // from positions `before` to `after`, with the forces of their last evaluation: Σ F·Δy [J]
+  // (exact for gravity, and summed per step so that tiny steps lose nothing to cancellation).
   struct Work {
-    double constraints = 0, colliders = 0, self_contact = 0;
+    double gravity = 0, constraints = 0, colliders = 0, self_contact = 0;
   };
   Work load_work(const double* before, const double* after) const;
   // For integrators that hold particles through their own equations (petsc_newton): the
