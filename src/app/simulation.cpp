@@ -137,7 +137,8 @@ class Simulation {
   // integrator.energy_growth_limit of the energy scale: K + losses − (E(0) + work) bounds the
   // balance from below because Π ≥ 0, so it needs no energy evaluation.
   void check_energy_growth(double dt);
-  // Writes summary.json with `status` and `message`, then throws RunError(message).
+  // Writes a last probes.csv row (unless the state is non-finite) and summary.json with `status`
+  // and `message`, then throws RunError(message).
   [[noreturn]] void stop(const std::string& status, const std::string& message);
   void finish_summary();
   void report_progress(Clock::time_point start, bool final);
@@ -321,6 +322,8 @@ void Simulation::finish_summary() {
 }
 
 void Simulation::stop(const std::string& status, const std::string& message) {
+  // The books and a last probe row at the state the run stopped in, unless it is not finite.
+  if (status != "nonfinite" && last_sample_time_ < state_.time) sample_energy();
   summary_.status = status;
   summary_.message = message;
   finish_summary();

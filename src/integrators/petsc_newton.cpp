@@ -213,6 +213,8 @@ void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvi
   const std::vector<double> acceleration = s.acceleration;
   const std::string failure = attempt(dynamics, state, dt);
   if (failure.empty()) return;
+  state = start;
+  s.acceleration = acceleration;
   if (halvings == 0)
     throw RunError(settings_.max_step_halvings > 0 && !s.scheme.is_static()
                        ? fmt::format("{} (the step was already halved {} times: "
@@ -220,8 +222,6 @@ void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvi
                                      failure, settings_.max_step_halvings)
                        : failure);
   // Fallback: redo the step as two halves, each halved again where it fails.
-  state = start;
-  s.acceleration = acceleration;
   ++s.step_halvings;
   advance(dynamics, state, 0.5 * dt, halvings - 1);
   advance(dynamics, state, 0.5 * dt, halvings - 1);
