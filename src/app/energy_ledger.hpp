@@ -28,6 +28,9 @@ struct EnergyLedger {
   std::vector<std::pair<std::string, double>> entries() const;
   // The names alone.
   static std::vector<std::string> names();
+  // Every field as numbers, and back (checkpoints).
+  std::vector<double> numbers() const;
+  static EnergyLedger from_numbers(const std::vector<double>& numbers);
 };
 
 }  // namespace fissure

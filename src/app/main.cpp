@@ -4,10 +4,13 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <memory>
 
+#include "app/checkpoint.hpp"
 #include "app/info.hpp"
 #include "app/simulation.hpp"
 #include "core/error.hpp"
+#include "io/checkpoint_file.hpp"
 #include "render/render.hpp"
 #include "render/render_settings.hpp"
 #include "scene/config.hpp"
@@ -21,7 +24,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
 
   auto* run = app.add_subcommand("run", "simulate a scene, writing output as it goes");
-  run->add_option("config", config_path, "scene file (YAML)")->required();
+  std::string resume_dir;
+  run->add_option("config", config_path, "scene file (YAML)");
+  run->add_option("--resume", resume_dir,
+                  "go on from the checkpoint in this output folder (output.checkpoint_every)");
   run->add_option("--out", out_dir, "output folder (overrides output.dir)");
   run->add_option("--set", overrides, "override a config key: key.path=value (repeatable)")
       ->allow_extra_args(false);
@@ -65,7 +71,16 @@ int main(int argc, char** argv) {
                  s.failed, s.plotted ? ", work_precision.png/.svg" : "", s.folder);
       return 0;
     }
-    fissure::Config config = fissure::load_config(config_path, overrides);
+    std::unique_ptr<fissure::CheckpointReader> checkpoint;
+    if (*run && resume_dir.empty() == config_path.empty())
+      throw fissure::InputError("", "", "fissure run takes a scene file or --resume OUT_DIR");
+    if (!resume_dir.empty() && !(overrides.empty() && out_dir.empty()))
+      throw fissure::InputError("", "",
+                                "--resume goes on with the run's own config: no --set, --out");
+    if (!resume_dir.empty())
+      checkpoint = std::make_unique<fissure::CheckpointReader>(resume_dir + "/checkpoint.bin");
+    fissure::Config config = checkpoint ? fissure::checkpoint_config(*checkpoint, resume_dir)
+                                        : fissure::load_config(config_path, overrides);
     if (!out_dir.empty()) config.output.dir = out_dir;
     if (*info) {
       fissure::print_info(config);
@@ -73,6 +88,7 @@ int main(int argc, char** argv) {
     }
     fissure::RunOptions options;
     options.progress = isatty(fileno(stderr));
+    options.resume = checkpoint.get();
     const auto s = fissure::run_simulation(config, options);
     fmt::print(
         "{}: {} particles, {} bonds, {} steps of {:.3g} s in {:.2f} s ({:.3g} s/step), "

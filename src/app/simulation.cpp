@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/checkpoint.hpp"
 #include "app/energy.hpp"
 #include "app/energy_ledger.hpp"
 #include "core/error.hpp"
@@ -15,6 +16,7 @@
 #include "fracture/post_step.hpp"
 #include "integrators/integrator.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/probes_csv.hpp"
 #include "io/vtu_writer.hpp"
 #include "mesh/surface_writer.hpp"
@@ -141,6 +143,10 @@ class Simulation {
   // and `message`, then throws RunError(message).
   [[noreturn]] void stop(const std::string& status, const std::string& message);
   void finish_summary();
+  // Writes output.dir/checkpoint.bin: everything the run needs to go on from this step.
+  void write_checkpoint();
+  // Takes the run back to the checkpoint's step; the output after it is dropped.
+  void resume(const CheckpointReader& checkpoint);
   void report_progress(Clock::time_point start, bool final);
 
   const Config& config_;
@@ -164,6 +170,9 @@ class Simulation {
   // first adaptive step of 1e-12 s moves nothing), so energy this small is never "growth".
   double round_off_energy_ = 0;
   std::vector<double> previous_position_;  // y at the start of the step, for the load work
+  // Output schedule: the next probe row, frame and checkpoint are due at these times.
+  double next_probe_ = 0, next_frame_ = 0, next_checkpoint_ = 0, last_frame_time_ = 0;
+  std::vector<double> frame_times_;
 };
 
 Simulation::Simulation(const Config& config, const RunOptions& options)
@@ -199,9 +208,12 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
                     "check resolution, moduli and density",
                     config.time.end / summary_.dt, summary_.dt, max_steps));
   std::filesystem::create_directories(config.output.dir);
-  clear_previous_output(config.output.dir);
+  if (!options.resume) clear_previous_output(config.output.dir);
+  if (options.resume)
+    trim_output(config.output.dir, options.resume->number("run.frames"),
+                options.resume->number("run.probes_bytes"));
   probes_ = std::make_unique<ProbesCsv>(config.output.dir + "/probes.csv", config, scene_.particles,
-                                        EnergyLedger::names());
+                                        EnergyLedger::names(), options.resume != nullptr);
   pvd_ = std::make_unique<PvdIndex>(config.output.dir + "/particles.pvd");
   if (config.output.embedded_mesh())
     surface_writer_ = std::make_unique<SurfaceWriter>(config.output.dir, config.output.surface,
@@ -216,6 +228,66 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   state_.position = scene_.particles.reference;
   state_.velocity = scene_.particles.velocity;
   dynamics_->constrain_velocity(0.0, state_.velocity.data());
+  next_checkpoint_ = config.output.checkpoint_every;
+  if (options.resume) resume(*options.resume);
+}
+
+void Simulation::write_checkpoint() {
+  CheckpointWriter w;
+  w.add("config", config_.source);
+  w.add("config.file", config_.file);
+  w.add("run.time", std::vector<double>{state_.time});
+  w.add("run.steps", std::vector<double>{double(summary_.steps)});
+  w.add("run.frames", std::vector<double>{double(frame_)});
+  w.add("run.frame_times", frame_times_);
+  w.add("run.schedule",
+        std::vector<double>{next_probe_, next_frame_, next_checkpoint_, last_frame_time_,
+                            last_sample_time_, summary_.max_speed});
+  w.add(
+      "run.probes_bytes",
+      std::vector<double>{double(std::filesystem::file_size(config_.output.dir + "/probes.csv"))});
+  w.add("run.ledger", ledger_.numbers());
+  w.add("state.position", state_.position);
+  w.add("state.velocity", state_.velocity);
+  w.add("state.broken", post_step_->broken());
+  for (const NamedArrays& part :
+       {post_step_->saved_state(), dynamics_->saved_state(), integrator_->saved_state()})
+    for (const auto& [name, values] : part) w.add(name, values);
+  w.write(config_.output.dir + "/checkpoint.bin");
+}
+
+void Simulation::resume(const CheckpointReader& c) {
+  const std::vector<double> position = c.doubles("state.position");
+  if (position.size() != state_.position.size())
+    throw InputError(c.path(), "state.position",
+                     fmt::format("{} particles, but the scene has {}", position.size() / 3,
+                                 state_.position.size() / 3));
+  state_.position = position;
+  state_.velocity = c.doubles("state.velocity");
+  state_.time = c.number("run.time");
+  summary_.steps = static_cast<long>(c.number("run.steps"));
+  frame_ = static_cast<int>(c.number("run.frames"));
+  frame_times_ = c.doubles("run.frame_times");
+  const std::vector<double> schedule = c.doubles("run.schedule");
+  if (schedule.size() != 6) throw InputError(c.path(), "run.schedule", "expected 6 numbers");
+  next_probe_ = schedule[0];
+  next_frame_ = schedule[1];
+  next_checkpoint_ = schedule[2];
+  last_frame_time_ = schedule[3];
+  last_sample_time_ = schedule[4];
+  summary_.max_speed = schedule[5];
+  ledger_ = EnergyLedger::from_numbers(c.doubles("run.ledger"));
+  sampled_ = true;
+  NamedArrays post_step = c.arrays("post_step.");
+  for (auto& array : c.arrays("model.")) post_step.push_back(std::move(array));
+  post_step_->restore_state(scene_, post_step, c.bytes("state.broken"));
+  dynamics_->restore_state(c.arrays("dynamics."));
+  integrator_->restore_state(c.arrays("integrator."));
+  std::vector<std::pair<double, std::string>> frames;
+  for (std::size_t k = 0; k < frame_times_.size(); ++k)
+    frames.emplace_back(frame_times_[k], fmt::format("particles_{:06d}.vtu", k));
+  pvd_->reset(frames);
+  if (surface_writer_) surface_writer_->reset(frame_times_);
 }
 
 void Simulation::write_frame() {
@@ -233,6 +305,7 @@ void Simulation::write_frame() {
                        {"dilatation", 1, &model_->dilatation()}},
                       &scene_.particles.body);
   pvd_->add(state_.time, file);
+  frame_times_.push_back(state_.time);
   if (EmbeddedMesh* mesh = post_step_->embedded_mesh()) {
     mesh->place(state_.position.data());
     surface_writer_->write(frame_ - 1, state_.time, *mesh, damage, scene_.particles.body);
@@ -346,31 +419,35 @@ RunSummary Simulation::run() {
   const long steps = static_cast<long>(std::ceil(config_.time.end / dt - 1e-9));
   const double end = config_.time.end;
   summary_.setup_seconds = seconds_since(setup_start_);
-  double next_frame = 0, next_probe = 0, last_frame_time = 0;
   const double tolerance = 1e-9 * dt;
   auto output_due = [&] {
-    if (state_.time + tolerance >= next_probe) {
+    if (state_.time + tolerance >= next_probe_) {
       sample_energy();
-      next_probe += config_.output.probe_every;
+      next_probe_ += config_.output.probe_every;
     }
-    if (state_.time + tolerance >= next_frame) {
+    if (state_.time + tolerance >= next_frame_) {
       write_frame();
-      last_frame_time = state_.time;
-      next_frame += config_.output.every;
+      last_frame_time_ = state_.time;
+      next_frame_ += config_.output.every;
+    }
+    if (config_.output.checkpoint_every > 0 && state_.time + tolerance >= next_checkpoint_ &&
+        state_.time > 0) {
+      next_checkpoint_ += config_.output.checkpoint_every;
+      write_checkpoint();
     }
   };
   output_due();
   const auto start = Clock::now();
   auto last_report = start;
   double stepping_seconds = 0;
-  for (long s = 0; adaptive ? end - state_.time > 1e-12 * end : s < steps; ++s) {
+  for (long s = summary_.steps; adaptive ? end - state_.time > 1e-12 * end : s < steps; ++s) {
     const auto step_start = Clock::now();
     // A fixed-step integrator shortens its last step to land on time.end; an adaptive one stops
     // on frame times and time.end, and takes at most dt.
     double h = s + 1 == steps ? std::max(end - state_.time, 1e-12 * dt) : dt;
     if (adaptive) {
       h = std::min(dt, end - state_.time);
-      if (next_frame - state_.time > tolerance) h = std::min(h, next_frame - state_.time);
+      if (next_frame_ - state_.time > tolerance) h = std::min(h, next_frame_ - state_.time);
     }
     previous_position_ = state_.position;
     try {
@@ -404,7 +481,7 @@ RunSummary Simulation::run() {
   }
   if (options_.progress) report_progress(start, true);
   if (last_sample_time_ < state_.time) sample_energy();
-  if (last_frame_time < state_.time) write_frame();
+  if (last_frame_time_ < state_.time) write_frame();
   summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
   finish_summary();
   write_summary(config_.output.dir + "/summary.json", summary_);

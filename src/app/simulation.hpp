@@ -8,8 +8,13 @@
 
 namespace fissure {
 
+class CheckpointReader;
+
 struct RunOptions {
   bool progress = false;  // a progress line on stderr
+  // Go on from this checkpoint of a run of the same config into config.output.dir (the output
+  // after the checkpoint is dropped), instead of starting at t = 0.
+  const CheckpointReader* resume = nullptr;
 };
 
 struct RunSummary {
@@ -39,7 +44,8 @@ struct RunSummary {
 
 // Runs the scene into config.output.dir. Throws InputError for unusable input and RunError when
 // the run cannot go on: the state turned non-finite, energy grew without a load putting it in,
-// or the integrator failed; summary.json then records the status and the message.
+// or the integrator failed; summary.json then records the status and the message. With
+// output.checkpoint_every it writes output.dir/checkpoint.bin as it goes (docs/output.md).
 RunSummary run_simulation(const Config& config, const RunOptions& options);
 
 double peak_rss_mb();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "contact/contact_particles.hpp"
+#include "core/error.hpp"
 
 namespace fissure {
 
@@ -116,6 +117,25 @@ std::array<double, 3> Colliders::momentum() const {
     if (!c.shape.kinematic)
       for (int k = 0; k < 3; ++k) p[k] += c.shape.mass * c.velocity[k];
   return p;
+}
+
+std::vector<double> Colliders::saved_state() const {
+  std::vector<double> state;
+  for (const State& c : state_) {
+    state.insert(state.end(), c.position.begin(), c.position.end());
+    state.insert(state.end(), c.velocity.begin(), c.velocity.end());
+  }
+  return state;
+}
+
+void Colliders::restore_state(const std::vector<double>& state) {
+  if (state.size() != 6 * state_.size())
+    throw InputError("", "colliders", "the checkpoint holds another number of colliders");
+  for (std::size_t c = 0; c < state_.size(); ++c)
+    for (int k = 0; k < 3; ++k) {
+      state_[c].position[k] = state[6 * c + k];
+      state_[c].velocity[k] = state[6 * c + 3 + k];
+    }
 }
 
 }  // namespace fissure

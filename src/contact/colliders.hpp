@@ -17,6 +17,9 @@ class Colliders {
   void advance(double h);
   // Momentum of the dynamic colliders, for balances.
   std::array<double, 3> momentum() const;
+  // For checkpoints: position and velocity of every collider (6 numbers each), and back.
+  std::vector<double> saved_state() const;
+  void restore_state(const std::vector<double>& state);
 
  private:
   struct State {

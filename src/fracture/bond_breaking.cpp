@@ -132,4 +132,18 @@ std::size_t BondBreaking::apply() {
   return removed / 2;
 }
 
+void BondBreaking::restore(const std::vector<std::uint8_t>& broken) {
+  const int n = static_cast<int>(intact_.size());
+  std::size_t total = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
+      if (broken[b] && !broken_[b]) remove(i, b);
+      total += broken_[b];
+    }
+    update_damage(i);
+  }
+  changed_.clear();
+  broken_pairs_ = total / 2;
+}
+
 }  // namespace fissure

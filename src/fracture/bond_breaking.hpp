@@ -22,6 +22,9 @@ class BondBreaking {
   // (directed); apply() breaks them and returns how many pairs broke.
   std::size_t find(const double* y);
   std::size_t apply();
+  // For checkpoints: breaks every bond `broken` marks (1 per directed bond) that is intact here,
+  // through the model, and recomputes the damage.
+  void restore(const std::vector<std::uint8_t>& broken);
   // φ_i = 1 − n_i/N_i (Eq 19), N_i counted before the initial cracks.
   const std::vector<double>& damage() const { return damage_; }
   // 1 for each broken directed bond (CSR order).

@@ -1,5 +1,7 @@
 #include "fracture/post_step.hpp"
 
+#include "core/error.hpp"
+
 namespace fissure {
 
 PostStep::PostStep(const Scene& scene, Model& model, bool measure_energy)
@@ -39,6 +41,36 @@ const std::vector<double>* PostStep::damage() const {
 
 std::size_t PostStep::broken_bonds() const {
   return bond_breaking_ ? bond_breaking_->broken_bonds() : 0;
+}
+
+NamedArrays PostStep::saved_state() const {
+  NamedArrays state = model_.saved_state();
+  state.emplace_back("post_step.calls", std::vector<double>{double(calls_)});
+  state.emplace_back("post_step.released",
+                     std::vector<double>{released_.plastic, released_.fracture});
+  return state;
+}
+
+std::vector<std::uint8_t> PostStep::broken() const {
+  return bond_breaking_ ? bond_breaking_->broken() : std::vector<std::uint8_t>{};
+}
+
+void PostStep::restore_state(const Scene& scene, const NamedArrays& state,
+                             const std::vector<std::uint8_t>& broken) {
+  if (bond_breaking_) {
+    if (broken.size() != bond_breaking_->broken().size())
+      throw InputError("", "post_step.broken", "the checkpoint holds another number of bonds");
+    bond_breaking_->restore(broken);
+    if (embedded_mesh_)
+      embedded_mesh_ = std::make_unique<EmbeddedMesh>(scene, &bond_breaking_->broken());
+  }
+  model_.restore_state(state);
+  const std::vector<double>* calls = find_array(state, "post_step.calls");
+  const std::vector<double>* released = find_array(state, "post_step.released");
+  if (!calls || !released || released->size() != 2)
+    throw InputError("", "post_step", "missing from the checkpoint");
+  calls_ = static_cast<std::size_t>(calls->at(0));
+  released_ = {released->at(0), released->at(1)};
 }
 
 }  // namespace fissure

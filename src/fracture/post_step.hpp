@@ -32,6 +32,13 @@ class PostStep {
     double plastic = 0, fracture = 0;
   };
   const Released& released() const { return released_; }
+  // For checkpoints: the broken bonds, the model's state, the calls and the released energies;
+  // restore_state() rebuilds the embedded mesh from the restored bonds (split from scratch).
+  NamedArrays saved_state() const;
+  void restore_state(const Scene& scene, const NamedArrays& state,
+                     const std::vector<std::uint8_t>& broken);
+  // 1 per broken directed bond, or empty without fracture.
+  std::vector<std::uint8_t> broken() const;
   // The embedded tet mesh, or nullptr unless the config writes surfaces or tets.
   EmbeddedMesh* embedded_mesh() { return embedded_mesh_.get(); }
 

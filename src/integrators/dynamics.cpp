@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
+
 namespace fissure {
 
 Dynamics::Dynamics(const Scene& scene, Model& model)
@@ -218,6 +220,22 @@ void Dynamics::constrain_velocity(double t, double* v) const {
     if (c < 0) continue;
     const Vec3 velocity = held_velocity(k, c);
     for (int d = 0; d < 3; ++d) v[3 * held_particles_[k] + d] = velocity[d];
+  }
+}
+
+NamedArrays Dynamics::saved_state() const {
+  NamedArrays state = {{"dynamics.force_evaluations", {double(force_evaluations_)}}};
+  if (colliders_) state.emplace_back("dynamics.colliders", colliders_->saved_state());
+  return state;
+}
+
+void Dynamics::restore_state(const NamedArrays& state) {
+  if (const std::vector<double>* n = find_array(state, "dynamics.force_evaluations"))
+    force_evaluations_ = static_cast<long>(n->at(0));
+  if (colliders_) {
+    const std::vector<double>* c = find_array(state, "dynamics.colliders");
+    if (!c) throw InputError("", "dynamics.colliders", "missing from the checkpoint");
+    colliders_->restore_state(*c);
   }
 }
 

@@ -41,6 +41,9 @@ class Dynamics {
   void end_step(double h);
   // The colliders, or nullptr when the scene has none.
   const Colliders* colliders() const { return colliders_.get(); }
+  // For checkpoints: the colliders' motion and the force-evaluation counter, and back.
+  NamedArrays saved_state() const;
+  void restore_state(const NamedArrays& state);
   // Work gravity, the constraints, colliders and self-contact did on the particles over a step
   // from positions `before` to `after`, with the forces of their last evaluation: Σ F·Δy [J]
   // (exact for gravity, and summed per step so that tiny steps lose nothing to cancellation).

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/named_arrays.hpp"
 #include "integrators/dynamics.hpp"
 #include "scene/config.hpp"
 
@@ -33,6 +34,10 @@ class Integrator {
   // True when the integrator chooses its own steps; time.dt is then the largest.
   virtual bool adaptive() const { return false; }
   virtual Statistics statistics() const { return {}; }
+  // For checkpoints: what the integrator carries from one step to the next (a cached
+  // acceleration), and its restoration. Its counters (statistics()) are not kept.
+  virtual NamedArrays saved_state() const { return {}; }
+  virtual void restore_state(const NamedArrays&) {}
 };
 
 // The integrator registered under settings.type; throws InputError naming the valid ones

@@ -200,6 +200,13 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
     ensure_petsc();
     solver_ = std::make_unique<Solver>(dynamics, settings_);
     set_up_petsc(*solver_, settings_, file_);
+    if (const std::vector<double>* a = find_array(restored_, "integrator.acceleration")) {
+      solver_->acceleration = *a;
+      solver_->have_acceleration = true;
+    }
+    if (const std::vector<double>* n = find_array(restored_, "integrator.increments"))
+      solver_->increments = static_cast<long>(n->at(0));
+    restored_.clear();
   }
   Solver& s = *solver_;
   // static: the load ramp counts increments, so a failed one is not split
@@ -299,6 +306,16 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   ++s.steps;
   return {};
 }
+
+NamedArrays PetscNewton::saved_state() const {
+  if (!solver_) return restored_;
+  NamedArrays state = {{"integrator.increments", {double(solver_->increments)}}};
+  if (solver_->have_acceleration)
+    state.emplace_back("integrator.acceleration", solver_->acceleration);
+  return state;
+}
+
+void PetscNewton::restore_state(const NamedArrays& state) { restored_ = state; }
 
 Statistics PetscNewton::statistics() const {
   if (!solver_) return {};

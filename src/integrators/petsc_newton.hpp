@@ -16,6 +16,8 @@ class PetscNewton final : public Integrator {
   ~PetscNewton() override;
   double step(Dynamics& dynamics, State& state, double dt) override;
   Statistics statistics() const override;
+  NamedArrays saved_state() const override;
+  void restore_state(const NamedArrays& state) override;
   // What PETSc reports of its linear solver (KSPView), e.g. to check the factorization package.
   std::string solver_view() const;
 
@@ -31,6 +33,7 @@ class PetscNewton final : public Integrator {
   IntegratorSettings settings_;
   std::string file_;
   std::unique_ptr<Solver> solver_;
+  NamedArrays restored_;  // a checkpoint's state, applied when the solver is set up
 };
 
 }  // namespace fissure

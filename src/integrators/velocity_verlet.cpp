@@ -27,4 +27,15 @@ double VelocityVerlet::step(Dynamics& dynamics, State& state, double dt) {
   return dt;
 }
 
+NamedArrays VelocityVerlet::saved_state() const {
+  if (!have_acceleration_) return {};
+  return {{"integrator.acceleration", acceleration_}};
+}
+
+void VelocityVerlet::restore_state(const NamedArrays& state) {
+  const std::vector<double>* a = find_array(state, "integrator.acceleration");
+  have_acceleration_ = a != nullptr;
+  if (a) acceleration_ = *a;
+}
+
 }  // namespace fissure

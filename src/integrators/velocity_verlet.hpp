@@ -9,6 +9,8 @@ class VelocityVerlet final : public Integrator {
   double step(Dynamics& dynamics, State& state, double dt) override;
   bool explicit_step() const override { return true; }
   void bonds_changed() override { have_acceleration_ = false; }
+  NamedArrays saved_state() const override;
+  void restore_state(const NamedArrays& state) override;
 
  private:
   std::vector<double> acceleration_;

@@ -77,6 +77,15 @@ void write_particles_vtu(const std::string& path, const std::vector<double>& poi
 
 void PvdIndex::add(double time, const std::string& relative_file) {
   frames_.emplace_back(time, relative_file);
+  write();
+}
+
+void PvdIndex::reset(std::vector<std::pair<double, std::string>> frames) {
+  frames_ = std::move(frames);
+  write();
+}
+
+void PvdIndex::write() const {
   write_atomically(path_, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
     for (const auto& [t, file] : frames_)

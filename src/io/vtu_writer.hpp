@@ -38,8 +38,12 @@ class PvdIndex {
  public:
   explicit PvdIndex(std::string path) : path_(std::move(path)) {}
   void add(double time, const std::string& relative_file);
+  // Replaces the list (a resumed run: the frames up to its checkpoint) and rewrites the file.
+  void reset(std::vector<std::pair<double, std::string>> frames);
 
  private:
+  void write() const;
+
   std::string path_;
   std::vector<std::pair<double, std::string>> frames_;
 };

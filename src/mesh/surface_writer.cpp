@@ -124,4 +124,14 @@ void remove_surface_output(const std::string& dir) {
   }
 }
 
+void SurfaceWriter::reset(const std::vector<double>& times) {
+  std::vector<std::pair<double, std::string>> surface, tets;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    surface.emplace_back(times[k], fmt::format("surface_{:06d}.vtu", k));
+    tets.emplace_back(times[k], fmt::format("tets_{:06d}.vtu", k));
+  }
+  if (surface_) surface_pvd_.reset(surface);
+  if (tets_) tets_pvd_.reset(tets);
+}
+
 }  // namespace fissure

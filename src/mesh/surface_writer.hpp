@@ -17,6 +17,8 @@ class SurfaceWriter {
   // fracture); `body` is the body of each particle.
   void write(int frame, double time, const EmbeddedMesh& mesh, const std::vector<double>& damage,
              const std::vector<int>& body);
+  // A resumed run: the collections list frames 0 … times.size() − 1 at these times again.
+  void reset(const std::vector<double>& times);
 
  private:
   std::string dir_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "model/dilatation_calibration.hpp"
 
 namespace fissure {
@@ -226,6 +227,29 @@ std::size_t LpsModel::update_plasticity(const double* y) {
     plastic_dilatation_[i] = plastic_theta;  // θ^p_i = Σ_j c_ij e^p_ij V_j
   }
   return yielded;
+}
+
+NamedArrays LpsModel::saved_state() const {
+  NamedArrays state = {{"model.weighted_volume", weighted_volume_}};
+  if (plastic_) {
+    state.emplace_back("model.plastic_extension", plastic_extension_);
+    state.emplace_back("model.plastic_dilatation", plastic_dilatation_);
+  }
+  return state;
+}
+
+void LpsModel::restore_state(const NamedArrays& state) {
+  auto take = [&](const char* name, std::vector<double>& into) {
+    const std::vector<double>* values = find_array(state, name);
+    if (!values || values->size() != into.size())
+      throw InputError("", name, "missing from the checkpoint or of another size");
+    into = *values;
+  };
+  take("model.weighted_volume", weighted_volume_);
+  if (plastic_) {
+    take("model.plastic_extension", plastic_extension_);
+    take("model.plastic_dilatation", plastic_dilatation_);
+  }
 }
 
 void LpsModel::break_bond(int i, std::size_t b) {

@@ -24,6 +24,8 @@ class LpsModel final : public Model {
   bool plastic() const override { return plastic_; }
   std::size_t update_plasticity(const double* y) override;
   const std::vector<double>& plastic_extension() const override { return plastic_extension_; }
+  NamedArrays saved_state() const override;
+  void restore_state(const NamedArrays& state) override;
   bool has_stiffness() const override { return true; }
   void assemble_majoriser(const double* y, SparseSymmetric& K) override;
   void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/named_arrays.hpp"
 #include "scene/particles.hpp"
 
 namespace fissure {
@@ -70,6 +71,10 @@ class Model {
   virtual bool plastic() const { return false; }
   virtual std::size_t update_plasticity(const double*) { return 0; }
   virtual const std::vector<double>& plastic_extension() const { return no_plastic_extension_; }
+  // For checkpoints: what breaking and plasticity changed beyond the broken bonds themselves, and
+  // its restoration after the broken bonds have been replayed through break_bond().
+  virtual NamedArrays saved_state() const { return {}; }
+  virtual void restore_state(const NamedArrays&) {}
   // Stiffness for implicit integrators (notes §3), with e^p frozen, into a matrix of the
   // pattern linear/sparse_symmetric.hpp names: the PSD bond-wise majoriser K^bw ⪰ K
   // (bond_pattern) and the exact tangent K = ∂²Π/∂y² (two_hop_pattern). The tangent's material

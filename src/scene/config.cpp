@@ -388,6 +388,7 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
                 "colliders", "contact", "damping", "probes", "output", "render"});
   Config c;
   c.file = r.file();
+  c.source = YAML::Dump(root);
   c.name = root["name"] ? r.string(root["name"], "name")
                         : std::filesystem::path(r.file()).stem().string();
   c.time = read_time(r, root["time"]);
@@ -445,8 +446,9 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   }
   const YAML::Node out = root["output"];
   if (out)
-    r.check_keys(out, "output",
-                 {"dir", "every", "probe_every", "surface", "tets", "surface_motion"});
+    r.check_keys(
+        out, "output",
+        {"dir", "every", "probe_every", "checkpoint_every", "surface", "tets", "surface_motion"});
   c.output.dir = out && out["dir"] ? r.string(out["dir"], "output.dir") : "out/" + c.name;
   if (c.output.dir.empty()) r.fail("output.dir", "must not be empty");
   c.output.every =
@@ -454,6 +456,8 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
   c.output.probe_every = out && out["probe_every"]
                              ? r.positive(out["probe_every"], "output.probe_every")
                              : c.output.every;
+  if (out && out["checkpoint_every"])
+    c.output.checkpoint_every = r.positive(out["checkpoint_every"], "output.checkpoint_every");
   if (out && out["surface"]) c.output.surface = r.boolean(out["surface"], "output.surface");
   if (out && out["tets"]) c.output.tets = r.boolean(out["tets"], "output.tets");
   if (out && out["surface_motion"]) {

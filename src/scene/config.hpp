@@ -147,10 +147,11 @@ struct IntegratorSettings {
 
 struct OutputSettings {
   std::string dir;
-  double every = 0;        // seconds of simulated time between VTU frames
-  double probe_every = 0;  // seconds between probes.csv rows (default: every)
-  bool surface = false;    // crack surfaces of the embedded tet mesh per frame (§5.2)
-  bool tets = false;       // the whole embedded tet mesh per frame
+  double every = 0;             // seconds of simulated time between VTU frames
+  double probe_every = 0;       // seconds between probes.csv rows (default: every)
+  double checkpoint_every = 0;  // seconds between checkpoints (0: none)
+  bool surface = false;         // crack surfaces of the embedded tet mesh per frame (§5.2)
+  bool tets = false;            // the whole embedded tet mesh per frame
   // How mesh vertices follow the particles: `position` (mass-weighted displacement) or
   // `velocity` (Eqs 20–22, integrated every step).
   enum class SurfaceMotion { position, velocity } surface_motion = SurfaceMotion::position;
@@ -158,7 +159,8 @@ struct OutputSettings {
 };
 
 struct Config {
-  std::string file;  // the YAML file it came from
+  std::string file;    // the YAML file it came from
+  std::string source;  // the YAML it was read from, base and overrides merged (for checkpoints)
   std::string name;
   TimeSettings time;
   IntegratorSettings integrator;
