@@ -136,8 +136,8 @@ class Simulation {
   // Adds the step's work and losses to the ledger.
   void book_step(double h, const std::vector<double>& before);
   // Stops the run (RunError) when energy that no load put in exceeds
-  // integrator.energy_growth_limit of the energy scale: K + losses − (E(0) + work) bounds the
-  // balance from below because Π ≥ 0, so it needs no energy evaluation.
+  // integrator.energy_growth_limit of the energy scale for 10 steps in a row: K + losses −
+  // (E(0) + work) bounds the balance from below because Π ≥ 0, so it needs no energy evaluation.
   void check_energy_growth(double dt);
   // Writes a last probes.csv row (unless the state is non-finite) and summary.json with `status`
   // and `message`, then throws RunError(message).
@@ -169,6 +169,7 @@ class Simulation {
   // 1e-12 Σ m|g||x|: below this the work of gravity is lost to the round-off of positions (a
   // first adaptive step of 1e-12 s moves nothing), so energy this small is never "growth".
   double round_off_energy_ = 0;
+  int excess_steps_ = 0;                   // consecutive steps over integrator.energy_growth_limit
   std::vector<double> previous_position_;  // y at the start of the step, for the load work
   // Output schedule: the next probe row, frame and checkpoint are due at these times.
   double next_probe_ = 0, next_frame_ = 0, next_checkpoint_ = 0, last_frame_time_ = 0;
@@ -281,6 +282,8 @@ void Simulation::resume(const CheckpointReader& c) {
   NamedArrays post_step = c.arrays("post_step.");
   for (auto& array : c.arrays("model.")) post_step.push_back(std::move(array));
   post_step_->restore_state(scene_, post_step, c.bytes("state.broken"));
+  // The mesh was split afresh from the broken bonds; its vertices start from the particles.
+  if (EmbeddedMesh* mesh = post_step_->embedded_mesh()) mesh->place(state_.position.data());
   dynamics_->restore_state(c.arrays("dynamics."));
   integrator_->restore_state(c.arrays("integrator."));
   std::vector<std::pair<double, std::string>> frames;
@@ -355,7 +358,11 @@ void Simulation::check_energy_growth(double dt) {
                 std::abs(ledger_.initial) + std::abs(ledger_.gravity_work) +
                     std::abs(ledger_.constraint_work) + std::abs(ledger_.collider_work),
                 round_off_energy_, 1e-300});
-  if (!(excess > limit * budget) && std::isfinite(excess)) return;
+  // A load's work can be booked a step late (velocity Verlet at a first contact), so the excess
+  // must last: a growing mode stays above the limit, a late booking drops below it again.
+  constexpr int kSteps = 10;
+  excess_steps_ = excess > limit * budget || !std::isfinite(excess) ? excess_steps_ + 1 : 0;
+  if (excess_steps_ < kSteps) return;
   const std::string what = fmt::format(
       "energy grew without a load to account for it at step {} (t = {:.6g} s): kinetic energy "
       "{:.3g} J exceeds the initial energy plus the work put in ({:.3g} J) by {:.3g} times the "
