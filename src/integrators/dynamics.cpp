@@ -164,7 +164,6 @@ Vec3 Dynamics::held_velocity(std::size_t k, int c) const {
 void Dynamics::hold(double t, double* a, std::vector<double>& reaction) const {
   // A held particle's reaction is m (a_prescribed − a_free); a_prescribed ⟂ v (uniform
   // translation and rotation) does no work, so the ledger books −m a_free.
-  set_motions(t);
   for (std::size_t k = 0; k < held_particles_.size(); ++k) {
     const int i = held_particles_[k];
     const bool active = active_constraint(k, t) >= 0;
