@@ -133,12 +133,12 @@ class Simulation {
  private:
   void write_frame();
   void sample_energy();
-  // Adds the step's work and losses to the ledger.
-  void book_step(double h, const std::vector<double>& before);
+  // Adds the step's work and losses to the ledger; `kinetic` is K at the end of the step.
+  void book_step(double h, const std::vector<double>& before, double kinetic);
   // Stops the run (RunError) when energy that no load put in exceeds
   // integrator.energy_growth_limit of the energy scale for 10 steps in a row: K + losses −
   // (E(0) + work) bounds the balance from below because Π ≥ 0, so it needs no energy evaluation.
-  void check_energy_growth(double dt);
+  void check_energy_growth(double dt, double kinetic);
   // Writes a last probes.csv row (unless the state is non-finite) and summary.json with `status`
   // and `message`, then throws RunError(message).
   [[noreturn]] void stop(const std::string& status, const std::string& message);
@@ -332,23 +332,20 @@ void Simulation::sample_energy() {
   last_sample_time_ = state_.time;
 }
 
-void Simulation::book_step(double h, const std::vector<double>& before) {
+void Simulation::book_step(double h, const std::vector<double>& before, double kinetic) {
   const Dynamics::Work work = dynamics_->load_work(before.data(), state_.position.data());
   ledger_.gravity_work += work.gravity;
   ledger_.constraint_work += work.constraints;
   ledger_.collider_work += work.colliders;
   ledger_.contact_loss -= work.self_contact;
-  if (config_.damping > 0)
-    ledger_.damping_loss +=
-        h * 2.0 * config_.damping * kinetic_energy(scene_.particles.mass, state_.velocity);
+  ledger_.damping_loss += h * 2.0 * config_.damping * kinetic;
   ledger_.plastic_dissipation = post_step_->released().plastic;
   ledger_.fracture_release = post_step_->released().fracture;
 }
 
-void Simulation::check_energy_growth(double dt) {
+void Simulation::check_energy_growth(double dt, double kinetic) {
   const double limit = config_.integrator.energy_growth_limit;
   if (limit <= 0) return;
-  const double kinetic = kinetic_energy(scene_.particles.mass, state_.velocity);
   const double work = ledger_.gravity_work + ledger_.constraint_work + ledger_.collider_work;
   const double losses = ledger_.damping_loss + ledger_.contact_loss + ledger_.plastic_dissipation +
                         ledger_.fracture_release;
@@ -477,8 +474,12 @@ RunSummary Simulation::run() {
                summary_.steps, state_.time, bad, config_.bodies[scene_.particles.body[bad]].name,
                x[0], x[1], x[2], dt, summary_.stable_dt, config_.output.dir));
     }
-    book_step(h, previous_position_);
-    check_energy_growth(h);
+    // K once per step, for damping's loss and the energy-growth check, when either needs it.
+    const double kinetic = config_.damping > 0 || config_.integrator.energy_growth_limit > 0
+                               ? kinetic_energy(scene_.particles.mass, state_.velocity)
+                               : 0.0;
+    book_step(h, previous_position_, kinetic);
+    check_energy_growth(h, kinetic);
     stepping_seconds += seconds_since(step_start);
     output_due();
     if (options_.progress && seconds_since(last_report) > 0.5) {

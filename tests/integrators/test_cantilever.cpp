@@ -28,18 +28,11 @@ TEST(Cantilever, StaticDeflectionMatchesEulerBernoulli) {
   const Particles& p = scene.particles;
   const State s = test::static_equilibrium(dynamics, test::at_rest(p));
 
-  double sum_w = 0, sum_x = 0;
-  const auto tip = test::tip_particles(p, kResolution);
-  ASSERT_FALSE(tip.empty());
-  for (int i : tip) {
-    sum_w -= s.position[3 * i + 2] - p.reference[3 * i + 2];
-    sum_x += p.reference[3 * i];
-  }
-  const double x = sum_x / tip.size(), w = sum_w / tip.size(), L = C::length;
-  const double E = test::youngs_modulus(C::bulk, C::shear);
-  const double I = std::pow(C::side, 4) / 12;
+  ASSERT_FALSE(test::tip_particles(p, kResolution).empty());
+  const auto [x, w] = test::tip_deflection(p, s.position, kResolution);
   const double q = C::density * kGravity * C::side * C::side;
-  const double theory = q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);
+  const double theory =
+      test::euler_bernoulli_deflection(q, test::youngs_modulus(C::bulk, C::shear), x);
   std::printf(
       "%d particles; tip (x = %.4f m) deflection %.4e m, Euler-Bernoulli %.4e m, ratio %.4f\n",
       p.count(), x, w, theory, w / theory);

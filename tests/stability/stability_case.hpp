@@ -2,6 +2,8 @@
 // One case of the stability suite: a scene run through the fissure executable, its summary and
 // energy ledger read back, its figures printed, and the speed no particle can exceed without
 // energy appearing from nowhere.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -96,6 +98,22 @@ inline void report(const CaseRun& run, double speed_limit) {
       run.energy.count("balance_error") ? run.energy.at("balance_error") : NAN,
       run.number("max_speed"), speed_limit, run.number("broken_bonds"), run.number("fragments"));
   std::fflush(stdout);
+}
+
+// Reports a case that should complete and checks that it did and that no particle outran
+// speed_bound(); false (the failure recorded) when it did not complete.
+inline bool completed_within_speed_bound(const CaseRun& run) {
+  if (run.outcome.exit_code != 0) {
+    report(run, NAN);
+    ADD_FAILURE() << run.name << " exited with " << run.outcome.exit_code << "\n"
+                  << run.outcome.output;
+    return false;
+  }
+  const double bound = speed_bound(run);
+  report(run, bound);
+  EXPECT_EQ(run.status(), "completed") << run.name;
+  EXPECT_LT(run.number("max_speed"), bound) << run.name;
+  return true;
 }
 
 }  // namespace fissure::test

@@ -1,7 +1,8 @@
 // The stability suite (ctest label `stability`): hard cases stay numerically stable or stop with
 // a clear message, never with silent NaN. Each case prints its figures (ledger balance error,
 // largest speed, steps) and bounds them: the balance error by what its integrator may do
-// (docs/output.md, "Energy ledger"), the largest speed by speed_bound().
+// (docs/output.md, "Energy ledger"), the largest speed by speed_bound()
+// (completed_within_speed_bound()).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -19,7 +20,6 @@ namespace {
 using test::CaseRun;
 using test::report;
 using test::run_case;
-using test::speed_bound;
 
 // The explicit stable step estimate of a scene, as the run computes it.
 double stable_step(const std::string& yaml) {
@@ -75,26 +75,19 @@ TEST(Stability, GlassModuliImplicitAt100TimesTheExplicitLimit) {
         Variant{"glass_alpha_100x", "--set integrator.scheme=alpha", false}}) {
     const std::string args = fmt::format("--set time.dt={} {}", dt, v.settings);
     const CaseRun run = run_case(v.name, "integrator: {type: petsc_newton}\n" + kGlassBar, args);
-    const double bound = speed_bound(run);
-    report(run, bound);
-    ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-    EXPECT_EQ(run.status(), "completed");
+    ASSERT_TRUE(test::completed_within_speed_bound(run));
     const double error = run.energy.at("balance_error");
     if (v.conserving)
       EXPECT_LT(std::abs(error), 1e-4) << v.name;
     else
       EXPECT_LT(error, 1e-3) << v.name;
-    EXPECT_LT(run.number("max_speed"), bound) << v.name;
   }
   const CaseRun run =
       run_case("glass_arkode_sdirk_100x",
                "integrator: {type: arkode, method: SDIRK_2_1_2, fixed_step: true}\n" + kGlassBar,
                fmt::format("--set time.dt={}", dt));
-  const double bound = speed_bound(run);
-  report(run, bound);
-  ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(test::completed_within_speed_bound(run));
   EXPECT_LT(run.energy.at("balance_error"), 1e-3);
-  EXPECT_LT(run.number("max_speed"), bound);
 }
 
 // A near-incompressible (ν = 0.49: κ = 49.67 μ) rubber block on a fixed base whose top layer
@@ -113,24 +106,19 @@ output: {every: 0.02, probe_every: 0.0005}
 )";
 
 // Explicit at dt: auto and backward Euler at 20× the limit both complete. Symplectic Euler
-// keeps the books to O(dt) (|error| ≤ 0.05); backward Euler may only lose energy.
+// keeps the books to O(dt): |error| < 0.01 (measured 3.6e-3); backward Euler may only lose
+// energy.
 TEST(Stability, NearIncompressibleBlockExplicitAndImplicit) {
   const CaseRun explicit_run =
       run_case("rubber_nu049_explicit", "integrator: {type: symplectic_euler}\n" + kRubberBlock);
-  const double bound = speed_bound(explicit_run);
-  report(explicit_run, bound);
-  ASSERT_EQ(explicit_run.outcome.exit_code, 0) << explicit_run.outcome.output;
-  EXPECT_LT(std::abs(explicit_run.energy.at("balance_error")), 0.05);
-  EXPECT_LT(explicit_run.number("max_speed"), bound);
+  ASSERT_TRUE(test::completed_within_speed_bound(explicit_run));
+  EXPECT_LT(std::abs(explicit_run.energy.at("balance_error")), 0.01);
 
   const CaseRun implicit_run = run_case(
       "rubber_nu049_backward_euler_20x", "integrator: {type: petsc_newton}\n" + kRubberBlock,
       fmt::format("--set time.dt={}", 20 * stable_step(kRubberBlock)));
-  const double implicit_bound = speed_bound(implicit_run);
-  report(implicit_run, implicit_bound);
-  ASSERT_EQ(implicit_run.outcome.exit_code, 0) << implicit_run.outcome.output;
+  ASSERT_TRUE(test::completed_within_speed_bound(implicit_run));
   EXPECT_LT(implicit_run.energy.at("balance_error"), 0.01);
-  EXPECT_LT(implicit_run.number("max_speed"), implicit_bound);
 }
 
 // A 2 kg sphere at 300 m/s through a glass wall (Table 1's glass), explicit at dt: auto: the
@@ -154,13 +142,10 @@ colliders:
   - {sphere: {center: [0.25, -0.06, 0.25], radius: 0.05}, velocity: [0, 300, 0], mass: 2}
 output: {every: 0.0015, probe_every: 0.00005}
 )");
-  const double bound = speed_bound(run);
-  report(run, bound);
-  ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(test::completed_within_speed_bound(run));
   EXPECT_GT(run.number("broken_bonds"), 0);
   EXPECT_GT(run.number("fragments"), 1);
   EXPECT_LT(std::abs(run.energy.at("balance_error")), 0.1);
-  EXPECT_LT(run.number("max_speed"), bound);
   finite_rows(run.out / "probes.csv");
 }
 
@@ -182,12 +167,8 @@ output: {every: 0.03, probe_every: 0.001}
 TEST(Stability, CrushToTenPercentOfHeightStaysFinite) {
   const CaseRun run =
       run_case("crush_to_10_percent", "integrator: {type: symplectic_euler}\n" + kCrush);
-  const double bound = speed_bound(run);
-  report(run, bound);
-  ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-  EXPECT_EQ(run.status(), "completed");
-  EXPECT_LT(std::abs(run.energy.at("balance_error")), 0.05);
-  EXPECT_LT(run.number("max_speed"), bound);
+  ASSERT_TRUE(test::completed_within_speed_bound(run));
+  EXPECT_LT(std::abs(run.energy.at("balance_error")), 0.01);  // O(dt); measured 1.4e-3
   EXPECT_GT(run.energy.at("constraint_work"), 0);
   finite_rows(run.out / "probes.csv");
 }
@@ -222,12 +203,9 @@ output: {every: 0.01, probe_every: 0.001}
   for (const std::string type : {"symplectic_euler", "petsc_newton"}) {
     const CaseRun run = run_case("shatter_" + type, "integrator: {type: " + type + "}\n" + yaml, "",
                                  {{"lattice.txt", lattice}});
-    const double bound = speed_bound(run);
-    report(run, bound);
-    ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+    ASSERT_TRUE(test::completed_within_speed_bound(run));
     EXPECT_EQ(run.number("broken_bonds"), run.number("bonds")) << type;
     EXPECT_EQ(run.number("fragments"), run.number("particles")) << type;
-    EXPECT_LT(run.number("max_speed"), bound);
     const auto rows = finite_rows(run.out / "probes.csv");
     ASSERT_GT(rows.size(), 3u);
     for (std::size_t r = 2; r < rows.size(); ++r)
@@ -285,12 +263,9 @@ output: {every: 0.1, probe_every: 0.002}
 )";
   const CaseRun run = run_case("plastic_flow_backward_euler_50x", yaml,
                                fmt::format("--set time.dt={}", 50 * stable_step(yaml)));
-  const double bound = speed_bound(run);
-  report(run, bound);
-  ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(test::completed_within_speed_bound(run));
   EXPECT_GT(run.energy.at("plastic_dissipation"), 0.0);
   EXPECT_LT(run.energy.at("balance_error"), 0.01);
-  EXPECT_LT(run.number("max_speed"), bound);
   finite_rows(run.out / "probes.csv");
 }
 
@@ -323,12 +298,9 @@ TEST(Stability, NewtonFailureHalvesTheStepOrStopsWithAClearMessage) {
       "--set time.dt={} --set integrator.petsc_options='-snes_max_it 4'", 25 * stable_step(kCrush));
   const CaseRun halved =
       run_case("newton_failure_halved", "integrator: {type: petsc_newton}\n" + kCrush, args);
-  const double bound = speed_bound(halved);
-  report(halved, bound);
-  ASSERT_EQ(halved.outcome.exit_code, 0) << halved.outcome.output;
+  ASSERT_TRUE(test::completed_within_speed_bound(halved));
   EXPECT_GT(halved.statistic("step_halvings"), 0);
   EXPECT_LT(halved.energy.at("balance_error"), 0.01);
-  EXPECT_LT(halved.number("max_speed"), bound);
 
   const CaseRun stopped =
       run_case("newton_failure_stops", "integrator: {type: petsc_newton}\n" + kCrush,

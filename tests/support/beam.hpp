@@ -47,4 +47,27 @@ inline std::vector<int> tip_particles(const Particles& p, double resolution) {
   return tip;
 }
 
+// Where the tip of a deflected cantilever is: the mean reference x of the tip particles and
+// their mean downward displacement w at `position`.
+struct TipDeflection {
+  double x, w;
+};
+inline TipDeflection tip_deflection(const Particles& p, const std::vector<double>& position,
+                                    double resolution) {
+  const auto tip = tip_particles(p, resolution);
+  double sum_x = 0, sum_w = 0;
+  for (int i : tip) {
+    sum_x += p.reference[3 * i];
+    sum_w -= position[3 * i + 2] - p.reference[3 * i + 2];
+  }
+  return {sum_x / tip.size(), sum_w / tip.size()};
+}
+
+// Euler–Bernoulli deflection at x of the cantilever under its own weight q per length:
+// q x² (6L² − 4Lx + x²) / (24 E I).
+inline double euler_bernoulli_deflection(double q, double E, double x) {
+  const double L = Cantilever::length, I = std::pow(Cantilever::side, 4) / 12;
+  return q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);
+}
+
 }  // namespace fissure::test

@@ -33,20 +33,14 @@ Deflection static_tip_deflection(double resolution) {
   const Particles& p = scene.particles;
   const State s = test::static_equilibrium(dynamics, test::at_rest(p));
 
-  double sum_w = 0, sum_x = 0;
-  const auto tip = test::tip_particles(p, resolution);
-  for (int i : tip) {
-    sum_w -= s.position[3 * i + 2] - p.reference[3 * i + 2];
-    sum_x += p.reference[3 * i];
-  }
-  const double x = sum_x / tip.size(), L = C::length;
-  const double E = test::youngs_modulus(C::bulk, C::shear);
+  const auto [x, w] = test::tip_deflection(p, s.position, resolution);
+  const double L = C::length, E = test::youngs_modulus(C::bulk, C::shear);
   const double ks = test::shear_coefficient(test::poisson_ratio(C::bulk, C::shear));
-  const double A = C::side * C::side, I = std::pow(C::side, 4) / 12;
+  const double A = C::side * C::side;
   const double q = C::density * gravity * A;
-  const double bending = q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);
+  const double bending = test::euler_bernoulli_deflection(q, E, x);
   const double shear = q * (L * x - 0.5 * x * x) / (ks * C::shear * A);
-  return {p.count(), x, sum_w / tip.size(), bending + shear};
+  return {p.count(), x, w, bending + shear};
 }
 
 // The order p of a sequence r(λ) = r* + C λ^p from three resolutions λ = b/2, b/3, b/4:
