@@ -27,6 +27,8 @@ class Dynamics {
   // The model's internal forces F_int(y), 3N, overwritten; counted in force_evaluations().
   void internal_forces(const double* y, double* f);
   long force_evaluations() const { return force_evaluations_; }
+  // Counts an evaluation of F_int made by the model directly (with its energy, say).
+  void count_force_evaluation() { ++force_evaluations_; }
   // External forces M g + F_contact(y, v) (colliders and self-contact), 3N, overwritten.
   void external_forces(const double* y, const double* v, double* f);
   // Sets the velocity of every particle held by a constraint active at time t.

@@ -1,5 +1,7 @@
 #include "integrators/implicit_scheme.hpp"
 
+#include <algorithm>
+
 namespace fissure {
 
 ImplicitScheme::ImplicitScheme(const std::string& scheme, double rho_infinity) {
@@ -7,6 +9,8 @@ ImplicitScheme::ImplicitScheme(const std::string& scheme, double rho_infinity) {
     kind_ = Kind::backward_euler;
   } else if (scheme == "static") {
     kind_ = Kind::static_equilibrium;
+  } else if ((tableau_ = find_sdirk_tableau(scheme))) {
+    kind_ = Kind::sdirk;
   } else {
     kind_ = Kind::newmark_alpha;
     if (scheme == "alpha") {
@@ -16,11 +20,12 @@ ImplicitScheme::ImplicitScheme(const std::string& scheme, double rho_infinity) {
       gamma_ = 0.5 - alpha_m_ + alpha_f_;
       beta_ = 0.25 * (1 - alpha_m_ + alpha_f_) * (1 - alpha_m_ + alpha_f_);
     }
+    held_fraction_ = 1 - alpha_f_;
   }
 }
 
 void ImplicitScheme::predict(const State& state, const std::vector<double>& acceleration, double c,
-                             double h) {
+                             double h, int stage) {
   const std::size_t n = state.position.size();
   target_.resize(n);
   const double* y = state.position.data();
@@ -31,6 +36,35 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
       inertia_ = 0;
       for (std::size_t k = 0; k < n; ++k) target_[k] = y[k];
       return;
+    case Kind::sdirk: {
+      // Stage i of y' = v, v' = M⁻¹(F + f) − c v: Y_i = Ŷ_i + γh V_i, V_i = V̂_i + γh V'_i with
+      // Ŷ_i = y_n + h Σ_{j<i} a_ij V_j, V̂_i = v_n + h Σ_{j<i} a_ij V'_j. Eliminating V_i,
+      // A M (Y_i − ỹ) = F(Y_i) + f with A = (1 + γhc)/(γh)², ỹ = Ŷ_i + γh V̂_i / (1 + γhc).
+      const SdirkTableau& t = *tableau_;
+      stage_ = stage;
+      if (stage == 0) {
+        stage_velocity_.assign(t.stages, std::vector<double>(n));
+        stage_acceleration_.assign(t.stages, std::vector<double>(n));
+      }
+      explicit_position_.assign(y, y + n);
+      explicit_velocity_.assign(v, v + n);
+      for (int j = 0; j < stage; ++j) {
+        const double w = h * t.a[stage * t.stages + j];
+        const double* vj = stage_velocity_[j].data();
+        const double* aj = stage_acceleration_[j].data();
+#pragma omp parallel for schedule(static)
+        for (std::size_t k = 0; k < n; ++k) {
+          explicit_position_[k] += w * vj[k];
+          explicit_velocity_[k] += w * aj[k];
+        }
+      }
+      const double gh = t.gamma * h;
+      inertia_ = (1 + gh * c) / (gh * gh);
+      held_fraction_ = t.c(stage);
+      for (std::size_t k = 0; k < n; ++k)
+        target_[k] = explicit_position_[k] + gh * explicit_velocity_[k] / (1 + gh * c);
+      return;
+    }
     case Kind::backward_euler:
       // M (v_{n+1} − v_n)/h = F + f − c M v_{n+1},  v_{n+1} = (z − y_n)/h
       inertia_ = (1 + c * h) / (h * h);
@@ -57,10 +91,27 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
 }
 
 std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
+  if (kind_ == Kind::sdirk && stage_ > 0) return last_minimiser_;
   std::vector<double> z(state.position.size());
-  const double step = kind_ == Kind::static_equilibrium ? 0.0 : (1 - alpha_f_) * h;
+  const double step = kind_ == Kind::static_equilibrium ? 0.0
+                      : kind_ == Kind::sdirk            ? tableau_->c(0) * h
+                                                        : (1 - alpha_f_) * h;
   for (std::size_t k = 0; k < z.size(); ++k) z[k] = state.position[k] + step * state.velocity[k];
   return z;
+}
+
+void ImplicitScheme::finish_stage(const std::vector<double>& z, double h) {
+  if (kind_ != Kind::sdirk) return;
+  // V_i = (Y_i − Ŷ_i)/(γh), V'_i = (V_i − V̂_i)/(γh)
+  const double gh = tableau_->gamma * h;
+  double* velocity = stage_velocity_[stage_].data();
+  double* acceleration = stage_acceleration_[stage_].data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    velocity[k] = (z[k] - explicit_position_[k]) / gh;
+    acceleration[k] = (velocity[k] - explicit_velocity_[k]) / gh;
+  }
+  last_minimiser_ = z;
 }
 
 void ImplicitScheme::correct(const std::vector<double>& z, State& state,
@@ -74,6 +125,26 @@ void ImplicitScheme::correct(const std::vector<double>& z, State& state,
       // Inertia is ignored: the body is at rest in each equilibrium.
       for (std::size_t k = 0; k < n; ++k) y[k] = z[k], v[k] = 0, a[k] = 0;
       return;
+    case Kind::sdirk: {
+      // y_{n+1} = y_n + h Σ b_i V_i, v_{n+1} = v_n + h Σ b_i V'_i; for a stiffly accurate scheme
+      // y_{n+1}, v_{n+1} are the last stage's Y_s, V_s exactly.
+      const SdirkTableau& t = *tableau_;
+      if (t.stiffly_accurate) {
+        std::copy(z.begin(), z.end(), y);
+        std::copy(stage_velocity_.back().begin(), stage_velocity_.back().end(), v);
+      } else {
+        for (int i = 0; i < t.stages; ++i) {
+          const double w = h * t.b[i];
+          const double* vi = stage_velocity_[i].data();
+          const double* ai = stage_acceleration_[i].data();
+#pragma omp parallel for schedule(static)
+          for (std::size_t k = 0; k < n; ++k) y[k] += w * vi[k], v[k] += w * ai[k];
+        }
+      }
+      const double* last = stage_acceleration_[t.stages - 1].data();
+      std::copy(last, last + n, a);
+      return;
+    }
     case Kind::backward_euler:
 #pragma omp parallel for schedule(static)
       for (std::size_t k = 0; k < n; ++k) {

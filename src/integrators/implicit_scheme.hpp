@@ -1,42 +1,64 @@
 #pragma once
 // An implicit step as the minimisation of an incremental potential (docs/integrators.md):
 //   E(z) = (A/2)(z − ỹ)ᵀ M (z − ỹ) + Π(z) − fᵀz,   ∇E = A M (z − ỹ) − F_int(z) − f,
-// whose Hessian A M + K is what Newton factorizes. Each scheme fixes A and ỹ from the state at
-// the start of the step, and turns the minimiser z back into positions and velocities.
+// whose Hessian A M + K is what Newton solves with. Each scheme fixes A and ỹ from the state at
+// the start of the step, and turns the minimiser z back into positions and velocities. A
+// singly diagonally implicit Runge–Kutta scheme (SDIRK) takes one such minimisation per stage,
+// all with the same A, so one factor serves every stage and step.
 #include <vector>
 
 #include "integrators/integrator.hpp"
+#include "integrators/sdirk_tableau.hpp"
 
 namespace fissure {
 
 class ImplicitScheme {
  public:
-  // scheme: backward_euler, newmark, alpha (with ρ∞), static.
+  // scheme: backward_euler, newmark, alpha (with ρ∞), sdirk3, sdirk4, static.
   ImplicitScheme(const std::string& scheme, double rho_infinity);
 
-  // Sets inertia() and target() for a step of size h from y_n, v_n and the acceleration a_n,
-  // with mass-proportional damping c.
-  void predict(const State& state, const std::vector<double>& acceleration, double c, double h);
+  // Minimisations per step: the SDIRK stages, else 1.
+  int stages() const { return tableau_ ? tableau_->stages : 1; }
+  // Sets inertia() and target() for stage `stage` of a step of size h from y_n, v_n and the
+  // acceleration a_n, with mass-proportional damping c. Stages are taken in order, each after
+  // the previous one's finish_stage().
+  void predict(const State& state, const std::vector<double>& acceleration, double c, double h,
+               int stage = 0);
   // The coefficient A of M in the potential (0 for static).
   double inertia() const { return inertia_; }
   // ỹ.
   const std::vector<double>& target() const { return target_; }
   // Newton's starting guess, z at constant velocity: ỹ would add h²a_n, which after a sudden
-  // release (a_n large, h large) lands far outside the basin of a good Newton start.
+  // release (a_n large, h large) lands far outside the basin of a good Newton start. For a later
+  // SDIRK stage: the previous stage's minimiser.
   std::vector<double> guess(const State& state, double h) const;
-  // z of a particle that moves at velocity u through the step (held by a constraint).
-  double held_value(double y, double u, double h) const { return y + (1 - alpha_f_) * h * u; }
-  // From the minimiser z: y_{n+1}, v_{n+1} into `state` and a_{n+1} into `acceleration`.
+  // z of a particle that moves at velocity u through the step (held by a constraint), for the
+  // stage last predicted.
+  double held_value(double y, double u, double h) const { return y + held_fraction_ * h * u; }
+  // Records the minimiser z of the stage last predicted (SDIRK; nothing for the others).
+  void finish_stage(const std::vector<double>& z, double h);
+  // From the minimiser z of the last stage: y_{n+1}, v_{n+1} into `state` and a_{n+1} into
+  // `acceleration`.
   void correct(const std::vector<double>& z, State& state, std::vector<double>& acceleration,
                double h) const;
+  // True while a stage after an SDIRK step's first is being solved.
+  bool later_stage() const { return kind_ == Kind::sdirk && stage_ > 0; }
   bool is_static() const { return kind_ == Kind::static_equilibrium; }
 
  private:
-  enum class Kind { backward_euler, newmark_alpha, static_equilibrium } kind_;
+  enum class Kind { backward_euler, newmark_alpha, sdirk, static_equilibrium } kind_;
   // Generalized-α (Chung & Hulbert 1993); Newmark's average acceleration is α_m = α_f = 0.
   double alpha_m_ = 0, alpha_f_ = 0, beta_ = 0.25, gamma_ = 0.5;
   double inertia_ = 0;
+  double held_fraction_ = 1;  // z − y of a held particle over h u: (1 − α_f), or c_i of a stage
   std::vector<double> target_;
+  // SDIRK: the tableau, the stage being solved, and per stage i its velocity V_i and
+  // acceleration Ȧ_i; Ŷ and V̂ of the stage being solved (the explicit part of its sums).
+  const SdirkTableau* tableau_ = nullptr;
+  int stage_ = 0;
+  std::vector<std::vector<double>> stage_velocity_, stage_acceleration_;
+  std::vector<double> explicit_position_, explicit_velocity_;
+  std::vector<double> last_minimiser_;
 };
 
 }  // namespace fissure

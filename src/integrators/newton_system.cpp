@@ -1,22 +1,20 @@
 #include "integrators/newton_system.hpp"
 
 #include <cmath>
-
-#include "linear/shifted_system.hpp"
+#include <cstring>
 
 namespace fissure {
 
 NewtonSystem::NewtonSystem(Dynamics& dynamics, const std::string& tangent)
     : dynamics_(dynamics), tangent_(tangent) {
-  const Families& families = dynamics.model().families();
-  matrix_ = tangent == "majoriser" ? bond_pattern(families) : two_hop_pattern(families);
-  diagonal_ = diagonal_positions(matrix_);
   const auto& m = dynamics.mass();
   mass_.resize(3 * m.size());
   for (std::size_t i = 0; i < m.size(); ++i)
     for (int d = 0; d < 3; ++d) mass_[3 * i + d] = m[i];
   force_.resize(mass_.size());
   external_.resize(mass_.size());
+  masked_.resize(mass_.size());
+  if (tangent == "majoriser") majoriser_ = bond_pattern(dynamics.model().families());
 }
 
 std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const State& state,
@@ -27,6 +25,7 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   for (double& f : external_) f *= load_factor;
   // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
   // ωh ≫ 1 at large steps carry large velocities), from y: whichever has the lower potential.
+  // A later SDIRK stage starts from the previous stage's minimiser.
   std::vector<double> z = scheme.guess(state, h);
   std::vector<double> stay = state.position;
   fixed_.assign(z.size(), 0);
@@ -39,10 +38,27 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
       fixed_[u] = 1;
       z[u] = stay[u] = scheme.held_value(state.position[u], velocity[k][d], h);
     }
+  linearized_ = false;
+  if (scheme.later_stage()) return z;
   return objective(stay.data()) < objective(z.data()) ? stay : z;
 }
 
+void NewtonSystem::evaluate(const double* z, long& passes) {
+  const std::size_t n = mass_.size();
+  if (cached_ && std::memcmp(z, point_.data(), n * sizeof(double)) == 0) {
+    ++cache_hits;
+    return;
+  }
+  elastic_ = dynamics_.model().forces_and_energy(z, force_.data());
+  dynamics_.count_force_evaluation();
+  point_.assign(z, z + n);
+  cached_ = true;
+  ++passes;
+}
+
+// E = (A/2)(z − ỹ)ᵀM(z − ỹ) + Π(z) − fᵀ(z − ỹ)
 double NewtonSystem::objective(const double* z) {
+  evaluate(z, objective_passes);
   double kinetic = 0, work = 0;
   const std::size_t n = mass_.size();
 #pragma omp parallel for reduction(+ : kinetic, work) schedule(static)
@@ -52,13 +68,13 @@ double NewtonSystem::objective(const double* z) {
     kinetic += mass_[k] * d * d;
     work += external_[k] * d;  // fᵀ(z − ỹ): fᵀz up to a constant, without its cancellation
   }
-  const double elastic = dynamics_.model().elastic_energy(z);
-  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic) + std::abs(work);
-  return 0.5 * inertia_ * kinetic + elastic - work;
+  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic_) + std::abs(work);
+  return 0.5 * inertia_ * kinetic + elastic_ - work;
 }
 
+// ∇E = A M (z − ỹ) − F_int(z) − f
 void NewtonSystem::residual(const double* z, double* r) {
-  dynamics_.internal_forces(z, force_.data());
+  evaluate(z, residual_passes);
   const std::size_t n = mass_.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k)
@@ -72,13 +88,34 @@ std::vector<double> NewtonSystem::reactions() const {
   return reaction;
 }
 
-void NewtonSystem::hessian(const double* z) {
+void NewtonSystem::linearize(const double* z) {
+  linearization_.assign(z, z + mass_.size());
+  linearized_ = false;
+}
+
+void NewtonSystem::apply(const double* v, double* out) {
   Model& model = dynamics_.model();
+  if (!linearized_ || linearized_tangent_ != tangent_) {
+    if (tangent_ == "majoriser")
+      model.assemble_majoriser(linearization_.data(), majoriser_);
+    else
+      model.linearize(linearization_.data(), tangent_ == "projected");
+    linearized_ = true;
+    linearized_tangent_ = tangent_;
+    ++linearizations;
+  }
+  const std::size_t n = mass_.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) masked_[k] = fixed_[k] ? 0.0 : v[k];
   if (tangent_ == "majoriser")
-    model.assemble_majoriser(z, matrix_);
+    majoriser_.multiply(masked_.data(), out);
   else
-    model.assemble_tangent(z, matrix_, tangent_ == "projected");
-  shift_and_fix(matrix_, diagonal_, mass_, inertia_, fixed_);
+    model.apply_tangent(masked_.data(), out);
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = fixed_[k] ? (inertia_ > 0 ? inertia_ * mass_[k] : 1.0) * v[k]
+                       : out[k] + inertia_ * mass_[k] * v[k];
+  ++tangent_products;
 }
 
 }  // namespace fissure

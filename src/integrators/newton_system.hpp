@@ -1,7 +1,11 @@
 #pragma once
 // The nonlinear system of one implicit step, free of any solver library: the incremental
-// potential of implicit_scheme.hpp, its gradient (the residual) and its Hessian, with the
-// particles a constraint holds eliminated (their unknowns fixed at the value they must take).
+// potential of implicit_scheme.hpp, its gradient (the residual) and the product of its Hessian
+// A M + K with a vector (matrix-free), with the particles a constraint holds eliminated (their
+// unknowns fixed at the value they must take). The energy and the forces at a point come from
+// one pass over the bonds and are kept, so that a line search asking for the objective and then
+// the residual at the same point pays once.
+#include <string>
 #include <vector>
 
 #include "integrators/implicit_scheme.hpp"
@@ -11,41 +15,67 @@ namespace fissure {
 
 class NewtonSystem {
  public:
-  // tangent: "majoriser" (bond-wise, bond_pattern), or on two_hop_pattern "exact", "projected"
-  // (the tangent without compressed bonds' geometric term) or "auto" (either; use_tangent
-  // picks). See model.hpp.
+  // tangent: "majoriser" (bond-wise, assembled on bond_pattern), or matrix-free "exact",
+  // "projected" (the tangent without compressed bonds' geometric term) or "auto" (either;
+  // use_tangent picks). See model.hpp.
   NewtonSystem(Dynamics& dynamics, const std::string& tangent);
-  // Switches between "exact" and "projected" (same pattern).
+  // Switches between "exact" and "projected".
   void use_tangent(const std::string& tangent) {
     if (tangent_ != "majoriser") tangent_ = tangent;
   }
+  const std::string& tangent() const { return tangent_; }
 
-  // Prepares a step of size h from `state`: f = M g + contact at the start of the step, scaled
-  // by `load_factor`; held particles fixed. Returns the starting guess z0.
+  // Prepares a stage of size h from `state` (the scheme predicted it): f = M g + contact at the
+  // start of the step, scaled by `load_factor`; held particles fixed. Returns the starting
+  // guess z0.
   std::vector<double> begin_step(const ImplicitScheme& scheme, const State& state, double h,
                                  double load_factor);
-  // E(z), ∇E(z) (zero on held unknowns), and ∇²E(z) into matrix().values.
+  // E(z) and ∇E(z) (zero on held unknowns).
   double objective(const double* z);
   void residual(const double* z, double* r);
-  void hessian(const double* z);
-  const SparseSymmetric& matrix() const { return matrix_; }
+  // Sets the point the Newton matrix is taken at (computed on the first product).
+  void linearize(const double* z);
+  // out = (A M + K) v on free unknowns, A m v on held ones (their rows decoupled).
+  void apply(const double* v, double* out);
+  // The model changed between steps (bonds broke, plastic flow): forget the kept evaluation.
+  void model_changed() { cached_ = false; }
+
+  // What preconditioners need: the unknowns' masses, which are held, the current A.
+  const std::vector<double>& mass() const { return mass_; }
+  const std::vector<char>& fixed() const { return fixed_; }
+  double inertia() const { return inertia_; }
+  Dynamics& dynamics() { return dynamics_; }
+
   // The size of the terms of the last objective() value: changes of E below about 1e-13 of it
   // are round-off, which no line search can resolve.
   double objective_magnitude() const { return magnitude_; }
-  // The constraint reactions at the last residual() point, 3N: −(F_int + f) on held unknowns
+  // The constraint reactions at the last evaluated point, 3N: −(F_int + f) on held unknowns
   // (their prescribed acceleration does no work), 0 elsewhere.
   std::vector<double> reactions() const;
 
+  // Model passes (forces and energy together) and the requests the kept one answered.
+  long residual_passes = 0, objective_passes = 0, cache_hits = 0, tangent_products = 0,
+       linearizations = 0;
+
  private:
+  // F_int(z) and Π(z) into force_ and elastic_, unless z is the point they were computed at.
+  void evaluate(const double* z, long& passes);
+
   Dynamics& dynamics_;
   std::string tangent_;
-  SparseSymmetric matrix_;
-  std::vector<int> diagonal_;     // index of entry (r, r) in matrix_
   std::vector<char> fixed_;       // per unknown: held by a constraint
   std::vector<double> mass_;      // per unknown
   std::vector<double> external_;  // f
   std::vector<double> target_;    // ỹ
-  std::vector<double> force_;     // scratch: F_int
+  std::vector<double> force_;     // F_int at point_
+  std::vector<double> point_;     // where force_ and elastic_ were computed
+  double elastic_ = 0;
+  bool cached_ = false;
+  std::vector<double> linearization_;  // where the Newton matrix is taken
+  bool linearized_ = false;            // the model holds linearization_'s tangent
+  std::string linearized_tangent_;
+  SparseSymmetric majoriser_;   // tangent: majoriser, assembled at linearization_
+  std::vector<double> masked_;  // scratch: v with held unknowns zeroed
   double inertia_ = 0;
   double magnitude_ = 0;
 };

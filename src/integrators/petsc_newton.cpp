@@ -4,12 +4,14 @@
 #include <petscsnes.h>
 
 #include <algorithm>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "integrators/newton_preconditioner.hpp"
 #include "integrators/newton_system.hpp"
 #include "integrators/petsc_session.hpp"
 
@@ -25,23 +27,41 @@ struct PetscNewton::Solver {
     MatDestroy(&matrix);
     VecDestroy(&unknowns);
     VecDestroy(&residual);
+    preconditioner.reset();
     PetscOptionsDestroy(&options);
   }
 
   NewtonSystem system;
   ImplicitScheme scheme;
+  std::unique_ptr<NewtonPreconditioner> preconditioner;
   std::vector<double> acceleration;  // a_n
   bool have_acceleration = false;
   long increments = 0;  // static: load increments taken
   PetscOptions options = nullptr;
   SNES snes = nullptr;
-  Mat matrix = nullptr;
+  KSP ksp = nullptr;
+  Mat matrix = nullptr;  // A M + K, matrix-free (MATSHELL)
   Vec unknowns = nullptr, residual = nullptr;
   std::exception_ptr error;  // an exception raised inside a PETSc callback
-  long steps = 0, newton_iterations = 0, linear_solves = 0, line_search_cuts = 0;
-  long factorizations = 0, function_evaluations = 0, objective_evaluations = 0;
+  // Refresh policy (docs/integrators.md, "Factor reuse"): the factor is refreshed at the next
+  // Newton iteration when `pending` names a reason, when A or the tangent choice changed since
+  // it was made, or when the last iterations converged too slowly.
+  const char* pending = "first";
+  double factor_inertia = -1;
+  std::string factor_tangent;
+  int iterations_since_refresh = 0;
+  std::vector<double> norms;  // |r_k| of the current Newton solve
+  bool reuse = true;
+  double refresh_contraction = 0.25;
+  int refresh_iterations = 6, refresh_krylov = 40;
+  long steps = 0, newton_iterations = 0, linear_solves = 0, krylov_iterations = 0;
+  long line_search_cuts = 0;
   long tangent_fallbacks = 0;  // auto: steps redone with the projected tangent
+  long krylov_fallbacks = 0;   // cg met an indefinite matrix: the step redone with gmres
   long step_halvings = 0;      // failed steps redone as two halves
+  long refreshes_step_size = 0, refreshes_bonds = 0, refreshes_convergence = 0;
+  long refreshes_fallback = 0, refreshes_every_iteration = 0;
+  bool krylov = false;  // a Krylov method runs on the matrix-free tangent
   bool options_checked = false;
 };
 
@@ -50,17 +70,10 @@ namespace {
 using Solver = PetscNewton::Solver;
 
 // PETSc calls these; exceptions must not cross its C frames, so they are parked in the solver.
-PetscErrorCode form_residual(SNES, Vec x, Vec r, void* context) {
-  auto* s = static_cast<Solver*>(context);
+template <class F>
+PetscErrorCode guarded(Solver* s, F&& body) {
   try {
-    const PetscScalar* z;
-    PetscScalar* out;
-    VecGetArrayRead(x, &z);
-    VecGetArray(r, &out);
-    s->system.residual(z, out);
-    VecRestoreArray(r, &out);
-    VecRestoreArrayRead(x, &z);
-    ++s->function_evaluations;
+    body();
     return 0;
   } catch (...) {
     s->error = std::current_exception();
@@ -68,50 +81,122 @@ PetscErrorCode form_residual(SNES, Vec x, Vec r, void* context) {
   }
 }
 
-PetscErrorCode form_hessian(SNES, Vec x, Mat, Mat matrix, void* context) {
+PetscErrorCode form_residual(SNES, Vec x, Vec r, void* context) {
   auto* s = static_cast<Solver*>(context);
-  try {
+  return guarded(s, [&] {
     const PetscScalar* z;
-    VecGetArrayRead(x, &z);
-    s->system.hessian(z);
-    VecRestoreArrayRead(x, &z);
-    // Same pattern, same order (sorted columns): the values are copied over as they are.
-    PetscScalar* values;
-    MatSeqAIJGetArray(matrix, &values);
-    const auto& v = s->system.matrix().values;
-    std::memcpy(values, v.data(), v.size() * sizeof(double));
-    MatSeqAIJRestoreArray(matrix, &values);
-    ++s->factorizations;
-    return 0;
-  } catch (...) {
-    s->error = std::current_exception();
-    return PETSC_ERR_USER;
-  }
+    PetscScalar* out;
+    petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
+    petsc_check(VecGetArray(r, &out), "VecGetArray");
+    s->system.residual(z, out);
+    petsc_check(VecRestoreArray(r, &out), "VecRestoreArray");
+    petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+  });
 }
 
 PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
   auto* s = static_cast<Solver*>(context);
-  try {
+  return guarded(s, [&] {
     const PetscScalar* z;
-    VecGetArrayRead(x, &z);
+    petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
     *value = s->system.objective(z);
-    VecRestoreArrayRead(x, &z);
-    ++s->objective_evaluations;
-    return 0;
-  } catch (...) {
-    s->error = std::current_exception();
-    return PETSC_ERR_USER;
-  }
+    petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+  });
 }
 
-// Counts Newton iterations whose line search had to shorten the step.
-PetscErrorCode count_cuts(SNES snes, PetscInt iteration, PetscReal, void* context) {
+// Why the factor must be refreshed before this Newton iteration's linear solve, or nullptr.
+const char* refresh_reason(Solver& s) {
+  if (s.pending) return s.pending;
+  if (!s.reuse) return "every_iteration";
+  if (s.system.inertia() != s.factor_inertia) return "step_size";
+  if (s.system.tangent() != s.factor_tangent) return "fallback";
+  const std::size_t k = s.norms.size();
+  if (k >= 2 && s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2]) return "convergence";
+  if (s.iterations_since_refresh >= s.refresh_iterations) return "convergence";
+  if (s.krylov && k >= 2) {
+    PetscInt its = 0;
+    petsc_check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
+    if (its > s.refresh_krylov) return "convergence";
+  }
+  return nullptr;
+}
+
+// The Newton matrix is matrix-free; what PETSc calls the Jacobian evaluation only moves its
+// linearization point, and refreshes the preconditioner's factor when the policy asks.
+PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
+  auto* s = static_cast<Solver*>(context);
+  return guarded(s, [&] {
+    const PetscScalar* z;
+    petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
+    s->system.linearize(z);
+    const char* reason = refresh_reason(*s);
+    if (reason) {
+      const std::string why = reason;
+      s->pending = nullptr;
+      s->factor_inertia = s->system.inertia();
+      s->factor_tangent = s->system.tangent();
+      s->iterations_since_refresh = 0;
+      if (why == "step_size") ++s->refreshes_step_size;
+      if (why == "bonds") ++s->refreshes_bonds;
+      if (why == "convergence") ++s->refreshes_convergence;
+      if (why == "fallback") ++s->refreshes_fallback;
+      if (why == "every_iteration") ++s->refreshes_every_iteration;
+      try {
+        s->preconditioner->refresh(z);
+      } catch (const RunError&) {
+        // Not positive definite: the solve fails like a failed linear solve, and the step is
+        // redone (auto tangent: with the projected tangent) or halved.
+        s->pending = "fallback";
+        petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+        throw;
+      }
+    }
+    ++s->iterations_since_refresh;
+    petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+  });
+}
+
+PetscErrorCode apply_newton_matrix(Mat matrix, Vec v, Vec out) {
+  void* context;
+  PetscCall(MatShellGetContext(matrix, &context));
+  auto* s = static_cast<Solver*>(context);
+  return guarded(s, [&] {
+    const PetscScalar* in;
+    PetscScalar* result;
+    petsc_check(VecGetArrayRead(v, &in), "VecGetArrayRead");
+    petsc_check(VecGetArray(out, &result), "VecGetArray");
+    s->system.apply(in, result);
+    petsc_check(VecRestoreArray(out, &result), "VecRestoreArray");
+    petsc_check(VecRestoreArrayRead(v, &in), "VecRestoreArrayRead");
+  });
+}
+
+PetscErrorCode apply_preconditioner(PC pc, Vec r, Vec x) {
+  void* context;
+  PetscCall(PCShellGetContext(pc, &context));
+  auto* s = static_cast<Solver*>(context);
+  return guarded(s, [&] { s->preconditioner->apply(r, x); });
+}
+
+PetscErrorCode view_preconditioner(PC pc, PetscViewer viewer) {
+  void* context;
+  PetscCall(PCShellGetContext(pc, &context));
+  static_cast<Solver*>(context)->preconditioner->view(viewer);
+  return 0;
+}
+
+// Records |r_k| for the refresh policy and counts Newton iterations whose line search had to
+// shorten the step.
+PetscErrorCode monitor(SNES snes, PetscInt iteration, PetscReal norm, void* context) {
+  auto* s = static_cast<Solver*>(context);
+  if (iteration == 0) s->norms.clear();
+  s->norms.push_back(norm);
   if (iteration == 0) return 0;
   SNESLineSearch search;
   PetscReal lambda = 1;
-  SNESGetLineSearch(snes, &search);
-  SNESLineSearchGetLambda(search, &lambda);
-  if (lambda < 1) ++static_cast<Solver*>(context)->line_search_cuts;
+  PetscCall(SNESGetLineSearch(snes, &search));
+  PetscCall(SNESLineSearchGetLambda(search, &lambda));
+  if (lambda < 1) ++s->line_search_cuts;
   return 0;
 }
 
@@ -120,24 +205,35 @@ void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::stri
   if (PetscOptionsInsertString(s.options, settings.petsc_options.c_str()) != 0)
     throw InputError(file, "integrator.petsc_options",
                      fmt::format("PETSc cannot read '{}'", settings.petsc_options));
-  const SparseSymmetric& a = s.system.matrix();
-  petsc_check(MatCreate(PETSC_COMM_SELF, &s.matrix), "MatCreate");
-  petsc_check(MatSetSizes(s.matrix, a.rows, a.rows, a.rows, a.rows), "MatSetSizes");
-  petsc_check(MatSetType(s.matrix, MATSEQAIJ), "MatSetType");
-  petsc_check(
-      MatSeqAIJSetPreallocationCSR(s.matrix, a.offsets.data(), a.columns.data(), a.values.data()),
-      "MatSeqAIJSetPreallocationCSR");
+  using P = IntegratorSettings::Preconditioner;
+  using K = IntegratorSettings::Krylov;
+  const Families& families = s.system.dynamics().model().families();
+  P kind = settings.preconditioner;
+  if (kind == P::automatic) kind = choose_preconditioner(families);
+  if (kind == P::tangent && s.system.tangent() == "majoriser") kind = P::majoriser;
+  s.preconditioner = std::make_unique<NewtonPreconditioner>(s.system, kind, s.options);
+  K krylov = settings.krylov;
+  if (krylov == K::automatic) krylov = kind == P::tangent ? K::none : K::cg;
+  s.krylov = krylov != K::none;
+  s.reuse = settings.reuse_factor;
+  s.refresh_contraction = settings.refresh_contraction;
+  s.refresh_iterations = settings.refresh_iterations;
+  s.refresh_krylov = settings.refresh_krylov;
+
+  const PetscInt n = static_cast<PetscInt>(s.system.mass().size());
+  petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &s, &s.matrix), "MatCreateShell");
+  petsc_check(MatShellSetOperation(s.matrix, MATOP_MULT,
+                                   reinterpret_cast<void (*)(void)>(apply_newton_matrix)),
+              "MatShellSetOperation");
   petsc_check(MatSetOption(s.matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-  petsc_check(MatSetOption(s.matrix, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
-  petsc_check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
-  petsc_check(VecCreateSeq(PETSC_COMM_SELF, a.rows, &s.unknowns), "VecCreateSeq");
+  petsc_check(VecCreateSeq(PETSC_COMM_SELF, n, &s.unknowns), "VecCreateSeq");
   petsc_check(VecDuplicate(s.unknowns, &s.residual), "VecDuplicate");
 
   petsc_check(SNESCreate(PETSC_COMM_SELF, &s.snes), "SNESCreate");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(s.snes), s.options), "options");
   petsc_check(SNESSetType(s.snes, SNESNEWTONLS), "SNESSetType");
   petsc_check(SNESSetFunction(s.snes, s.residual, form_residual, &s), "SNESSetFunction");
-  petsc_check(SNESSetJacobian(s.snes, s.matrix, s.matrix, form_hessian, &s), "SNESSetJacobian");
+  petsc_check(SNESSetJacobian(s.snes, s.matrix, s.matrix, form_jacobian, &s), "SNESSetJacobian");
   petsc_check(SNESSetObjective(s.snes, form_objective, &s), "SNESSetObjective");
   // Defaults a user may override: the solution error of rtol 1e-6 is far below the scheme's
   // truncation error at the steps these schemes are for (docs/integrators.md).
@@ -146,16 +242,35 @@ void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::stri
   petsc_check(SNESGetLineSearch(s.snes, &search), "SNESGetLineSearch");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(search), s.options), "options");
   petsc_check(SNESLineSearchSetType(search, SNESLINESEARCHBT), "SNESLineSearchSetType");
-  KSP ksp;
   PC pc;
-  petsc_check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
-  petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(ksp), s.options), "options");
-  petsc_check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-  petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  petsc_check(SNESGetKSP(s.snes, &s.ksp), "SNESGetKSP");
+  petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(s.ksp), s.options), "options");
+  switch (krylov) {
+    case K::none:
+      petsc_check(KSPSetType(s.ksp, KSPPREONLY), "KSPSetType");
+      break;
+    case K::gmres:
+      petsc_check(KSPSetType(s.ksp, KSPGMRES), "KSPSetType");
+      petsc_check(KSPSetPCSide(s.ksp, PC_RIGHT), "KSPSetPCSide");
+      break;
+    default:
+      petsc_check(KSPSetType(s.ksp, KSPCG), "KSPSetType");
+      break;
+  }
+  if (krylov != K::none) {
+    // Inexact Newton: each linear solve to 1e-3 of its right-hand side, judged on the true
+    // residual (no extra preconditioner application per iteration).
+    petsc_check(KSPSetNormType(s.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    petsc_check(KSPSetTolerances(s.ksp, 1e-3, 1e-50, 1e50, 500), "KSPSetTolerances");
+  }
+  petsc_check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc), s.options), "options");
-  petsc_check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-  petsc_check(PCFactorSetMatSolverType(pc, MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
-  petsc_check(SNESMonitorSet(s.snes, count_cuts, &s, nullptr), "SNESMonitorSet");
+  petsc_check(PCSetType(pc, PCSHELL), "PCSetType");
+  petsc_check(PCShellSetContext(pc, &s), "PCShellSetContext");
+  petsc_check(PCShellSetApply(pc, apply_preconditioner), "PCShellSetApply");
+  petsc_check(PCShellSetView(pc, view_preconditioner), "PCShellSetView");
+  petsc_check(PCShellSetName(pc, "fissure"), "PCShellSetName");
+  petsc_check(SNESMonitorSet(s.snes, monitor, &s, nullptr), "SNESMonitorSet");
   petsc_check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }
 
@@ -164,10 +279,10 @@ void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::stri
 bool at_round_off(Solver& s) {
   Vec r, dz;
   PetscReal residual = 0, update = 0;
-  SNESGetFunction(s.snes, &r, nullptr, nullptr);
-  SNESGetSolutionUpdate(s.snes, &dz);
-  VecNorm(r, NORM_2, &residual);
-  VecNorm(dz, NORM_2, &update);
+  petsc_check(SNESGetFunction(s.snes, &r, nullptr, nullptr), "SNESGetFunction");
+  petsc_check(SNESGetSolutionUpdate(s.snes, &dz), "SNESGetSolutionUpdate");
+  petsc_check(VecNorm(r, NORM_2, &residual), "VecNorm");
+  petsc_check(VecNorm(dz, NORM_2, &update), "VecNorm");
   return residual * update <= 1e-12 * s.system.objective_magnitude();
 }
 
@@ -209,9 +324,18 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
     restored_.clear();
   }
   Solver& s = *solver_;
+  // Plastic flow in the post-step changed the model since the kept evaluation.
+  if (dynamics.model().plastic()) s.system.model_changed();
   // static: the load ramp counts increments, so a failed one is not split
   advance(dynamics, state, dt, s.scheme.is_static() ? 0 : settings_.max_step_halvings);
   return dt;
+}
+
+void PetscNewton::bonds_changed() {
+  if (!solver_) return;
+  solver_->system.model_changed();
+  solver_->preconditioner->bonds_changed();
+  solver_->pending = "bonds";
 }
 
 void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
@@ -245,8 +369,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   // static: loads ramp linearly over integrator.steps increments, then stay
   const double load =
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;
-  s.scheme.predict(state, s.acceleration, dynamics.damping(), dt);
-  std::vector<double> z = s.system.begin_step(s.scheme, state, dt, load);
+  std::vector<double> z;
   // One Newton solve from z with the given tangent; false if PETSc failed (e.g. the tangent
   // was not positive definite) or Newton did not converge.
   PetscInt iterations = 0;
@@ -254,51 +377,64 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   auto solve = [&](const std::string& tangent) {
     s.system.use_tangent(tangent);
     PetscScalar* x;
-    VecGetArray(s.unknowns, &x);
+    petsc_check(VecGetArray(s.unknowns, &x), "VecGetArray");
     std::copy(z.begin(), z.end(), x);
-    VecRestoreArray(s.unknowns, &x);
+    petsc_check(VecRestoreArray(s.unknowns, &x), "VecRestoreArray");
     const PetscErrorCode code = SNESSolve(s.snes, nullptr, s.unknowns);
-    if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
-    PetscInt linear = 0;
-    SNESGetIterationNumber(s.snes, &iterations);
-    SNESGetLinearSolveIterations(s.snes, &linear);
+    if (s.error) {
+      std::exception_ptr error = std::exchange(s.error, nullptr);
+      try {
+        std::rethrow_exception(error);
+      } catch (const RunError&) {
+        if (!s.pending) throw;  // a factor that is not positive definite is a failed solve
+      }
+    }
+    PetscInt krylov = 0;
+    petsc_check(SNESGetIterationNumber(s.snes, &iterations), "SNESGetIterationNumber");
+    petsc_check(SNESGetLinearSolveIterations(s.snes, &krylov), "SNESGetLinearSolveIterations");
     s.newton_iterations += iterations;
-    s.linear_solves += linear;
+    s.linear_solves += iterations;
+    if (s.krylov) s.krylov_iterations += krylov;
     if (code != 0) {
       reason = SNES_DIVERGED_LINEAR_SOLVE;
       return false;
     }
-    SNESGetConvergedReason(s.snes, &reason);
+    petsc_check(SNESGetConvergedReason(s.snes, &reason), "SNESGetConvergedReason");
     if (reason == SNES_DIVERGED_LINE_SEARCH && at_round_off(s)) reason = SNES_CONVERGED_ITS;
     return reason > 0;
   };
-  // auto: the exact tangent converges quadratically where A M + K is positive definite; where it
-  // is not, or Newton fails with it, the step is redone with the projected tangent K⁺ ⪰ K.
-  if (settings_.tangent == "auto") {
-    if (!solve("exact")) {
-      ++s.tangent_fallbacks;
-      solve("projected");
+  for (int stage = 0; stage < s.scheme.stages(); ++stage) {
+    s.scheme.predict(state, s.acceleration, dynamics.damping(), dt, stage);
+    z = s.system.begin_step(s.scheme, state, dt, load);
+    // auto: the exact tangent converges quadratically where A M + K is positive definite; where
+    // it is not, or Newton fails with it, the stage is redone with the projected tangent K⁺ ⪰ K.
+    if (settings_.tangent == "auto") {
+      if (!solve("exact")) {
+        ++s.tangent_fallbacks;
+        solve("projected");
+      }
+    } else if (!solve(settings_.tangent) && reason == SNES_DIVERGED_LINEAR_SOLVE) {
+      return fmt::format(
+          "petsc_newton ({}): the linear solve failed in the step from t = {:.6g} s: the '{}' "
+          "tangent is not positive definite there; use integrator.tangent: auto or projected",
+          settings_.scheme, state.time, settings_.tangent);
     }
-  } else if (!solve(settings_.tangent) && reason == SNES_DIVERGED_LINEAR_SOLVE) {
-    return fmt::format(
-        "petsc_newton ({}): the linear solve failed in the step from t = {:.6g} s: the '{}' "
-        "tangent is not positive definite there; use integrator.tangent: auto or projected",
-        settings_.scheme, state.time, settings_.tangent);
+    if (reason < 0)
+      return fmt::format(
+          "petsc_newton ({}): Newton did not converge in the step from t = {:.6g} s with dt = "
+          "{:.3g} s: {} after {} iterations. Try a smaller time.dt, or raise -snes_max_it or "
+          "loosen -snes_rtol in integrator.petsc_options",
+          settings_.scheme, state.time, dt, SNESConvergedReasons[reason], iterations);
+    if (!s.options_checked) {
+      warn_unused_options(s, file_);
+      s.options_checked = true;
+    }
+    const PetscScalar* solution;
+    petsc_check(VecGetArrayRead(s.unknowns, &solution), "VecGetArrayRead");
+    std::copy(solution, solution + z.size(), z.begin());
+    petsc_check(VecRestoreArrayRead(s.unknowns, &solution), "VecRestoreArrayRead");
+    s.scheme.finish_stage(z, dt);
   }
-  if (reason < 0)
-    return fmt::format(
-        "petsc_newton ({}): Newton did not converge in the step from t = {:.6g} s with dt = "
-        "{:.3g} s: {} after {} iterations. Try a smaller time.dt, or raise -snes_max_it or "
-        "loosen -snes_rtol in integrator.petsc_options",
-        settings_.scheme, state.time, dt, SNESConvergedReasons[reason], iterations);
-  if (!s.options_checked) {
-    warn_unused_options(s, file_);
-    s.options_checked = true;
-  }
-  const PetscScalar* solution;
-  VecGetArrayRead(s.unknowns, &solution);
-  std::copy(solution, solution + z.size(), z.begin());
-  VecRestoreArrayRead(s.unknowns, &solution);
   s.scheme.correct(z, state, s.acceleration, dt);
   dynamics.set_constraint_reactions(s.system.reactions());
   state.time += dt;
@@ -320,14 +456,27 @@ void PetscNewton::restore_state(const NamedArrays& state) { restored_ = state; }
 Statistics PetscNewton::statistics() const {
   if (!solver_) return {};
   const Solver& s = *solver_;
+  const NewtonSystem& y = s.system;
+  const NewtonPreconditioner& p = *s.preconditioner;
   return {{"newton_iterations", double(s.newton_iterations)},
           {"linear_solves", double(s.linear_solves)},
+          {"krylov_iterations", double(s.krylov_iterations)},
           {"line_search_cuts", double(s.line_search_cuts)},
-          {"factorizations", double(s.factorizations)},
+          {"assemblies", double(p.assemblies)},
+          {"factorizations", double(p.factorizations)},
+          {"back_solves", double(p.back_solves)},
+          {"tangent_products", double(y.tangent_products)},
+          {"linearizations", double(y.linearizations)},
           {"tangent_fallbacks", double(s.tangent_fallbacks)},
           {"step_halvings", double(s.step_halvings)},
-          {"residual_evaluations", double(s.function_evaluations)},
-          {"objective_evaluations", double(s.objective_evaluations)}};
+          {"residual_evaluations", double(y.residual_passes)},
+          {"objective_evaluations", double(y.objective_passes)},
+          {"reused_evaluations", double(y.cache_hits)},
+          {"refreshes_step_size", double(s.refreshes_step_size)},
+          {"refreshes_bonds_broken", double(s.refreshes_bonds)},
+          {"refreshes_convergence", double(s.refreshes_convergence)},
+          {"refreshes_fallback", double(s.refreshes_fallback)},
+          {"refreshes_every_iteration", double(s.refreshes_every_iteration)}};
 }
 
 std::string PetscNewton::solver_view() const {
@@ -335,12 +484,10 @@ std::string PetscNewton::solver_view() const {
   // PETSc's string viewer abbreviates; its ASCII viewer writes the full report to a file.
   const fs::path path = fs::temp_directory_path() /
                         fmt::format("fissure_kspview_{}.txt", static_cast<const void*>(this));
-  KSP ksp;
   PetscViewer viewer;
-  SNESGetKSP(solver_->snes, &ksp);
-  PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer);
-  KSPView(ksp, viewer);
-  PetscViewerDestroy(&viewer);
+  petsc_check(PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer), "PetscViewerASCIIOpen");
+  petsc_check(KSPView(solver_->ksp, viewer), "KSPView");
+  petsc_check(PetscViewerDestroy(&viewer), "PetscViewerDestroy");
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();

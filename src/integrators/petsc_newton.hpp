@@ -1,8 +1,10 @@
 #pragma once
-// Implicit integration with PETSc (type: petsc_newton): each step minimises the incremental
-// potential of the chosen scheme (implicit_scheme.hpp) with SNES Newton and a backtracking line
-// search on that potential; the linear solver is KSPPREONLY + PCCHOLESKY with CHOLMOD, and the
-// symbolic factorization is done once for the run (the matrix pattern never changes).
+// Implicit integration with PETSc (type: petsc_newton): each step (each stage of an SDIRK
+// scheme) minimises the incremental potential of the chosen scheme (implicit_scheme.hpp) with
+// SNES Newton and a backtracking line search on that potential. The Newton matrix A M + K is
+// applied matrix-free; the linear solves are the preconditioner's factor alone (modified Newton)
+// or a Krylov method preconditioned by it, and the factor is reused across iterations, stages
+// and steps until the refresh policy renews it (newton_preconditioner.hpp, docs/integrators.md).
 #include <memory>
 #include <string>
 
@@ -15,6 +17,7 @@ class PetscNewton final : public Integrator {
   PetscNewton(const IntegratorSettings& settings, const std::string& file);
   ~PetscNewton() override;
   double step(Dynamics& dynamics, State& state, double dt) override;
+  void bonds_changed() override;
   Statistics statistics() const override;
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;

@@ -65,6 +65,23 @@ SparseSymmetric bond_pattern(const Families& families) {
   return expand_blocks(adjacency);
 }
 
+SparseSymmetric scalar_bond_pattern(const Families& families) {
+  const int n = static_cast<int>(families.offsets.size()) - 1;
+  SparseSymmetric a;
+  a.rows = n;
+  a.offsets.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i)
+    a.offsets[i + 1] = a.offsets[i] + families.offsets[i + 1] - families.offsets[i] + 1;
+  a.columns.resize(a.offsets.back());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const std::vector<int> row = closed_family(families, i);
+    std::copy(row.begin(), row.end(), a.columns.begin() + a.offsets[i]);
+  }
+  a.values.assign(a.columns.size(), 0.0);
+  return a;
+}
+
 SparseSymmetric two_hop_pattern(const Families& families) {
   const int n = static_cast<int>(families.offsets.size()) - 1;
   std::vector<std::vector<int>> adjacency(n);

@@ -30,6 +30,10 @@ SparseSymmetric bond_pattern(const Families& families);
 // the exact tangent, whose dilatation terms couple all members of a family with each other.
 SparseSymmetric two_hop_pattern(const Families& families);
 
+// One scalar entry coupling each particle with itself and its family (N×N): the pattern of a
+// scalar one-hop stiffness (Model::assemble_scalar_stiffness), columns sorted.
+SparseSymmetric scalar_bond_pattern(const Families& families);
+
 // Position of particle i's own block in its row of bond_pattern: the number of family members
 // with a smaller index.
 int self_position(const Families& families, int i);

@@ -111,9 +111,10 @@ void LpsModel::compute_dilatation(const double* y) {
 }
 
 // F_i = −∂Π/∂y_i = V_i Σ_j (t_ij + t_ji) n_ij V_j (Eqs 2–3), with the bond force density
-// t_ij = ½A_ij = c_ij D_i + ω_ij B_i ê_ij (Eqs 4, 8 and 12, corrected: notes §6).
-template <bool Plastic>
-void LpsModel::compute_forces(const double* y, double* f) {
+// t_ij = ½A_ij = c_ij D_i + ω_ij B_i ê_ij (Eqs 4, 8 and 12, corrected: notes §6). With Energy,
+// V_i W_i of energy_density from the same pass over row i's bonds.
+template <bool Plastic, bool Energy>
+void LpsModel::compute_forces(const double* y, double* f, double* energy) {
   compute_dilatation<Plastic>(y);
   const int n = particles_.count();
   const int* off = families_.offsets.data();
@@ -130,6 +131,10 @@ void LpsModel::compute_forces(const double* y, double* f) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
     const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
     double f0 = 0, f1 = 0, f2 = 0;
+    // θ_i − θ^p_i, and Σ_j ω ê² V_j
+    [[maybe_unused]] double elastic_theta = 0, squares = 0;
+    if constexpr (Energy)
+      elastic_theta = Plastic ? dilatation_[i] - plastic_dilatation_[i] : dilatation_[i];
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       const double* yj = y + 3 * j;
@@ -145,19 +150,43 @@ void LpsModel::compute_forces(const double* y, double* f) {
       f0 += s * d0;
       f1 += s * d1;
       f2 += s * d2;
+      if constexpr (Energy) {
+        // ê_ij as deviatoric_extension, summed as energy_density
+        const double e_hat = Plastic ? extension - ep[b] - elastic_theta * xi[b] / 3.0
+                                     : extension - elastic_theta * xi[b] / 3.0;
+        squares += omega[b] * tj.volume * e_hat * e_hat;
+      }
     }
     const double Vi = terms[i].volume;
     f[3 * i] = Vi * f0;
     f[3 * i + 1] = Vi * f1;
     f[3 * i + 2] = Vi * f2;
+    if constexpr (Energy) {
+      const double theta = dilatation_[i];
+      energy[i] =
+          Vi * (0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * Bi * squares);  // V_i W_i
+    }
   }
 }
 
 void LpsModel::forces(const double* y, double* f) {
   if (plastic_)
-    compute_forces<true>(y, f);
+    compute_forces<true, false>(y, f, nullptr);
   else
-    compute_forces<false>(y, f);
+    compute_forces<false, false>(y, f, nullptr);
+}
+
+// The forces of forces() (the same kernel, bitwise) and Π = Σ V_i W_i of elastic_energy().
+double LpsModel::forces_and_energy(const double* y, double* f) {
+  energy_.resize(particles_.count());
+  if (plastic_)
+    compute_forces<true, true>(y, f, energy_.data());
+  else
+    compute_forces<false, true>(y, f, energy_.data());
+  double total = 0;
+#pragma omp parallel for reduction(+ : total) schedule(static)
+  for (std::size_t i = 0; i < energy_.size(); ++i) total += energy_[i];
+  return total;
 }
 
 void LpsModel::update_dilatation(const double* y) {

@@ -29,12 +29,18 @@ class LpsModel final : public Model {
   bool has_stiffness() const override { return true; }
   void assemble_majoriser(const double* y, SparseSymmetric& K) override;
   void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;
+  void linearize(const double* y, bool clamp_compression) override;
+  void apply_tangent(const double* v, double* out) const override;
+  void assemble_scalar_stiffness(SparseSymmetric& L) const override;
+  double forces_and_energy(const double* y, double* f) override;
 
  private:
   template <bool Plastic>
   void compute_dilatation(const double* y);
-  template <bool Plastic>
-  void compute_forces(const double* y, double* f);
+  // With Energy, also V_i W_i into energy[i] (as energy_density); without, energy is not read and
+  // the force kernel is the plain one.
+  template <bool Plastic, bool Energy>
+  void compute_forces(const double* y, double* f, double* energy);
   void update_dilatation(const double* y);
   // h_ij for every directed bond: the majoriser stiffness row i gives bond b (lps_stiffness.cpp);
   // a bond's stiffness is h_ij + h_ji.
@@ -63,6 +69,18 @@ class LpsModel final : public Model {
   std::vector<double> plastic_dilatation_;   // θ^p_i = Σ_j c_ij e^p_ij V_j
   std::vector<double> yield_force_;          // A^c_i = √(2Ψ0) (Eq 14)
   std::vector<double> max_plastic_stretch_;  // γ / |ξ| (Eq 16, Table 1)
+  std::vector<double> energy_;               // V_i W_i, scratch of forces_and_energy
+  // Matrix-free tangent (lps_tangent_product.cpp), recorded by linearize(): per directed bond the
+  // unit direction n and the geometric stiffness g = p/ℓ (p⁺/ℓ with clamp_compression).
+  std::vector<double> tangent_nx_, tangent_ny_, tangent_nz_, tangent_geometric_;
+  std::vector<double> tangent_alpha_;  // V_i (κ_i + B_i m_i/9), per particle
+  // What the product's second pass gathers from each neighbour: X_i = α_i P_i − γ_i Q_i and
+  // Y_i = γ_i P_i per product, γ_i = V_i B_i/3 and V_i from linearize().
+  struct TangentTerms {
+    double x, y, gamma, volume;
+  };
+  mutable std::vector<TangentTerms> tangent_terms_;
+  mutable std::vector<double> tangent_rate_;  // s = n·(v_j − v_i) per directed bond, per product
 };
 
 }  // namespace fissure

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "linear/sparse_symmetric.hpp"
+#include "model/lps_bond_geometry.hpp"
 #include "model/lps_model.hpp"
 
 namespace fissure {
@@ -20,23 +21,6 @@ namespace fissure {
 namespace {
 
 using Vec = std::array<double, 3>;
-
-// Unit bond direction n and deformed length ℓ; a collapsed bond keeps its reference direction.
-struct BondGeometry {
-  Vec n;
-  double length;
-};
-
-BondGeometry bond_geometry(const double* y, const Particles& p, int i, int j, double xi) {
-  Vec d{y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]};
-  double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (length <= 1e-12 * xi) {
-    d = reference_vector(p, i, j);
-    length = 0;
-  }
-  const double norm = length > 0 ? length : xi;
-  return {{d[0] / norm, d[1] / norm, d[2] / norm}, length};
-}
 
 // K_b = k nnᵀ + g (I − nnᵀ): added to the diagonal block of row i, subtracted from block (i, j).
 void scatter_bond(SparseSymmetric& K, int i, int self_block, int other_block, const Vec& n,
@@ -75,7 +59,9 @@ double LpsModel::pair_force(int i, std::size_t b, double length) const {
 // aaᵀ ⪯ diag(Σ_k|a_k| |a_j|) by Cauchy–Schwarz. So each bond gets a stiffness along n, and the
 // geometric term is clamped at max(p, 0): K^bw ⪰ K and K^bw ⪰ 0.
 // h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond b,
-// for every directed bond: a bond's stiffness is h_ij + h_ji.
+// for every directed bond: a bond's stiffness is h_ij + h_ji. A broken bond (ω = c = 0) has
+// c̄ = r = 0, so h = 0; it is set so explicitly, so that no 0·∞ of a degenerate family can give it
+// a stiffness.
 std::vector<double> LpsModel::majoriser_bond_rows() const {
   const int n = particles_.count();
   const auto& off = families_.offsets;
@@ -104,11 +90,35 @@ std::vector<double> LpsModel::majoriser_bond_rows() const {
     const double q = eps > 0 ? B * m / (9.0 * eps) : 0.0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const auto [c, r] = weights(b);
-      h[b] = V[i] *
-             (B * bond_omega_[b] * V[nbr[b]] + a * sum_c * std::abs(c) + q * sum_r * std::abs(r));
+      h[b] = bond_omega_[b] == 0 ? 0.0
+                                 : V[i] * (B * bond_omega_[b] * V[nbr[b]] +
+                                           a * sum_c * std::abs(c) + q * sum_r * std::abs(r));
     }
   }
   return h;
+}
+
+// L(i, j) = −k_ij, L(i, i) = Σ_j k_ij with k_ij = (h_ij + h_ji)/3: the majoriser at rest, whose
+// bond puts ±3k_ij n nᵀ in its blocks, with n nᵀ replaced by I₃/3 (the same trace), so that
+// 3 tr L = tr K^bw. k is symmetric in the pair, so L is; a broken bond has h = 0 both ways.
+void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
+  const std::vector<double> h = majoriser_bond_rows();
+  const auto& off = families_.offsets;
+  const auto& rev = families_.reverse;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < particles_.count(); ++i) {
+    // Row i of scalar_bond_pattern is {i} ∪ H_i sorted, H_i sorted: bond k of the row is entry
+    // k, or k + 1 past i's own.
+    const int first = L.offsets[i], self = self_position(families_, i);
+    double diagonal = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const double k = (h[b] + h[rev[b]]) / 3.0;
+      const int k_index = b - off[i];
+      L.values[first + k_index + (k_index >= self ? 1 : 0)] = -k;
+      diagonal += k;
+    }
+    L.values[first + self] = diagonal;
+  }
 }
 
 // Gershgorin on S = M^-1/2 K^bw M^-1/2 at the reference state (no bond force, so no geometric

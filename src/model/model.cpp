@@ -18,6 +18,11 @@ double Model::elastic_energy(const double* y) {
   return total;
 }
 
+double Model::forces_and_energy(const double* y, double* f) {
+  forces(y, f);
+  return elastic_energy(y);
+}
+
 double influence(const MaterialPoints& m, int i, const double* xi, double xi_length) {
   if (m.anisotropy.empty()) return m.horizon[i] / xi_length;  // Eq 5
   const auto& G = m.anisotropy[i];

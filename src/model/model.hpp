@@ -85,6 +85,19 @@ class Model {
   virtual bool has_stiffness() const { return false; }
   virtual void assemble_majoriser(const double*, SparseSymmetric&) {}
   virtual void assemble_tangent(const double*, SparseSymmetric&, bool /*clamp_compression*/) {}
+  // The same tangent without assembly (matrix-free): linearize() records what K (or K⁺ with
+  // clamp_compression) at y needs, apply_tangent() then returns out = K v for any v (3N each),
+  // equal to assemble_tangent's matrix times v up to round-off, at about the cost of one force
+  // evaluation per product.
+  virtual void linearize(const double*, bool /*clamp_compression*/) {}
+  virtual void apply_tangent(const double*, double*) const {}
+  // A one-hop scalar stiffness at the reference state, N×N on scalar_bond_pattern: a graph
+  // Laplacian whose bond weights are a third of the majoriser's bond stiffness (so that L ⊗ I₃
+  // has the majoriser's trace at rest), for preconditioners that scale to large scenes.
+  virtual void assemble_scalar_stiffness(SparseSymmetric&) const {}
+  // F_int(y) into f (as forces()) and the elastic energy Π(y) (as elastic_energy()) from one pass
+  // over the bonds: an implicit step's residual and its line search's objective at one point.
+  virtual double forces_and_energy(const double* y, double* f);
   // Bytes stored per directed bond: the families (neighbour, |ξ|, reverse index) and the
   // model's own bond data.
   virtual std::size_t bytes_per_bond() const = 0;

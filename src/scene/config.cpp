@@ -327,8 +327,18 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
   r.require_map(node, "integrator");
   IntegratorSettings s;
   if (node["type"]) s.type = r.string(node["type"], "integrator.type");
-  const std::vector<std::string> petsc = {"scheme",  "rho_infinity",  "steps",
-                                          "tangent", "petsc_options", "max_step_halvings"};
+  const std::vector<std::string> petsc = {"scheme",
+                                          "rho_infinity",
+                                          "steps",
+                                          "tangent",
+                                          "petsc_options",
+                                          "max_step_halvings",
+                                          "preconditioner",
+                                          "krylov",
+                                          "reuse_factor",
+                                          "refresh_contraction",
+                                          "refresh_iterations",
+                                          "refresh_krylov"};
   const std::vector<std::string> arkode = {"method", "rtol", "atol", "fixed_step"};
   std::vector<std::string> allowed = {"type", "allow_unstable_dt", "energy_growth_limit"};
   if (s.type == "petsc_newton") allowed.insert(allowed.end(), petsc.begin(), petsc.end());
@@ -359,8 +369,48 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
     if (std::find(valid.begin(), valid.end(), value) == valid.end())
       r.fail(std::string("integrator.") + key, unknown_choice(key, value, valid));
   };
-  one_of("scheme", s.scheme, {"backward_euler", "newmark", "alpha", "static"});
+  one_of("scheme", s.scheme, {"backward_euler", "newmark", "alpha", "sdirk3", "sdirk4", "static"});
   one_of("tangent", s.tangent, {"auto", "projected", "majoriser", "exact"});
+  std::string choice;
+  using P = IntegratorSettings::Preconditioner;
+  one_of("preconditioner", choice, {"auto", "tangent", "majoriser", "scalar", "gamg"});
+  if (!choice.empty())
+    s.preconditioner = choice == "tangent"     ? P::tangent
+                       : choice == "majoriser" ? P::majoriser
+                       : choice == "scalar"    ? P::scalar
+                       : choice == "gamg"      ? P::gamg
+                                               : P::automatic;
+  choice.clear();
+  using K = IntegratorSettings::Krylov;
+  one_of("krylov", choice, {"auto", "none", "cg", "gmres"});
+  if (!choice.empty())
+    s.krylov = choice == "none"    ? K::none
+               : choice == "cg"    ? K::cg
+               : choice == "gmres" ? K::gmres
+                                   : K::automatic;
+  if (s.tangent == "majoriser" && s.preconditioner == P::tangent)
+    r.fail("integrator.preconditioner",
+           "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "
+           "majoriser");
+  if (node["reuse_factor"])
+    s.reuse_factor = r.boolean(node["reuse_factor"], "integrator.reuse_factor");
+  if (node["refresh_contraction"]) {
+    s.refresh_contraction =
+        r.positive(node["refresh_contraction"], "integrator.refresh_contraction");
+    if (s.refresh_contraction >= 1)
+      r.fail("integrator.refresh_contraction",
+             fmt::format("must be in (0, 1), got {}", s.refresh_contraction));
+  }
+  auto whole = [&](const char* key, int& value) {
+    if (!node[key]) return;
+    const double v = r.positive(node[key], std::string("integrator.") + key);
+    if (v != std::floor(v) || v > 1e6)
+      r.fail(std::string("integrator.") + key,
+             fmt::format("must be a whole number from 1 to 1e6, got {}", v));
+    value = static_cast<int>(v);
+  };
+  whole("refresh_iterations", s.refresh_iterations);
+  whole("refresh_krylov", s.refresh_krylov);
   if (node["rho_infinity"]) {
     s.rho_infinity = r.non_negative(node["rho_infinity"], "integrator.rho_infinity");
     if (s.rho_infinity > 1)

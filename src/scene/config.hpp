@@ -138,6 +138,19 @@ struct IntegratorSettings {
   int steps = 1;                          // static: load increments over which loads ramp
   std::string tangent = "auto";           // auto | projected | majoriser | exact
   std::string petsc_options;              // passed to PETSc untouched, e.g. "-snes_rtol 1e-8"
+  // The factor Newton's linear solves are preconditioned with (docs/integrators.md): the
+  // tangent itself (two-hop, CHOLMOD), the one-hop majoriser (CHOLMOD), a scalar one-hop matrix
+  // times I₃ (CHOLMOD) or algebraic multigrid on the majoriser (PETSc GAMG); auto by size.
+  enum class Preconditioner { automatic, tangent, majoriser, scalar, gamg };
+  Preconditioner preconditioner = Preconditioner::automatic;
+  // The linear solver around it: none (modified Newton: the factor alone), cg or gmres on the
+  // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
+  enum class Krylov { automatic, none, cg, gmres };
+  Krylov krylov = Krylov::automatic;
+  bool reuse_factor = true;           // false: a fresh factorization at every Newton iteration
+  double refresh_contraction = 0.25;  // refresh when |r_k+1| / |r_k| exceeds this
+  int refresh_iterations = 6;         // ... or a step's Newton iterations since the refresh do
+  int refresh_krylov = 40;            // ... or one linear solve needs more Krylov iterations
   // arkode
   std::string method = "ARK436L2SA";  // an ARKODE table or IMEX pair by name
   double rtol = 1e-6;

@@ -51,6 +51,8 @@ std::vector<Case> cases() {
   c.push_back({petsc("backward_euler"), 1, "petsc_newton_backward_euler"});
   c.push_back({petsc("newmark"), 2, "petsc_newton_newmark"});
   c.push_back({petsc("alpha"), 2, "petsc_newton_alpha"});
+  c.push_back({petsc("sdirk3"), 3, "petsc_newton_sdirk3"});
+  c.push_back({petsc("sdirk4"), 4, "petsc_newton_sdirk4"});
   for (const auto& m : arkode_methods()) c.push_back({arkode(m.name), double(m.order), m.name});
   return c;
 }

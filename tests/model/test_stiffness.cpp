@@ -7,40 +7,14 @@
 
 #include "linear/sparse_symmetric.hpp"
 #include "model/model.hpp"
-#include "support/scenes.hpp"
+#include "support/stiffness_block.hpp"
 
 namespace fissure {
 namespace {
 
-// A 0.06 m block at λ = 0.02 m (a few hundred particles, every one near a surface, where the
-// calibrated weights differ most from the uncorrected ones), ν = 0.125 like the paper's bar.
-Scene small_block(const std::string& plasticity = "") {
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.06, 0.06, "
-      "0.06]}}}}\n    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: 1.0e6, "
-      "shear_modulus: 1.2e6{}}}\n",
-      plasticity);
-  return build_scene(parse_config(yaml, "stiffness.yaml"));
-}
-
-// A general deformation: stretch, shear and a rotation, plus a smooth non-affine ripple so that
-// bonds are neither all stretched nor all alike.
-std::vector<double> deformed(const Particles& p, double strain) {
-  const double c = std::cos(0.4), s = std::sin(0.4);
-  const double F[9] = {c * (1 + strain), -s, strain,          s, c * (1 - 0.5 * strain), 0,
-                       0.3 * strain,     0,  1 + 0.8 * strain};
-  auto y = test::deform(p, F);
-  for (int i = 0; i < p.count(); ++i)
-    y[3 * i + 2] += 0.2 * strain * 0.02 * std::sin(150.0 * p.reference[3 * i]);
-  return y;
-}
-
-Eigen::MatrixXd dense(const SparseSymmetric& a) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(a.rows, a.rows);
-  for (int r = 0; r < a.rows; ++r)
-    for (int k = a.offsets[r]; k < a.offsets[r + 1]; ++k) d(r, a.columns[k]) = a.values[k];
-  return d;
-}
+using test::deformed;
+using test::dense;
+using test::small_block;
 
 // K v against the central difference −(F(y + hv) − F(y − hv)) / 2h, for 4 directions. With h
 // 1e-7 of the bond length, truncation (O(h²)) and round-off (1e-16/1e-7 of the force) stay well

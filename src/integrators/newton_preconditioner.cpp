@@ -1,0 +1,199 @@
+#include "integrators/newton_preconditioner.hpp"
+
+#include <fmt/format.h>
+#include <petscmat.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/error.hpp"
+#include "integrators/petsc_session.hpp"
+#include "linear/shifted_system.hpp"
+
+namespace fissure {
+
+namespace {
+
+// K ← A M + K on the scalar matrix: row i gets A m_i on its diagonal; a held particle's row
+// and column are decoupled as shift_and_fix does for the 3N matrices.
+void shift_scalar(SparseSymmetric& a, const std::vector<int>& diagonal,
+                  const std::vector<double>& mass, double inertia, const std::vector<char>& fixed) {
+  std::vector<double> particle_mass(a.rows);
+  std::vector<char> particle_fixed(a.rows);
+  for (int i = 0; i < a.rows; ++i) particle_mass[i] = mass[3 * i], particle_fixed[i] = fixed[3 * i];
+  shift_and_fix(a, diagonal, particle_mass, inertia, particle_fixed);
+}
+
+}  // namespace
+
+const char* preconditioner_name(IntegratorSettings::Preconditioner kind) {
+  using P = IntegratorSettings::Preconditioner;
+  switch (kind) {
+    case P::tangent:
+      return "tangent";
+    case P::majoriser:
+      return "majoriser";
+    case P::scalar:
+      return "scalar";
+    case P::gamg:
+      return "gamg";
+    case P::automatic:
+      break;
+  }
+  return "auto";
+}
+
+IntegratorSettings::Preconditioner choose_preconditioner(const Families& families) {
+  // Measured (docs/integrators.md, bench_implicit_step): the two-hop factor wins while it is
+  // small; its cost grows far faster than the scene, the scalar one-hop factor's about linearly.
+  const std::size_t particles = families.offsets.size() - 1;
+  return particles <= 4000 ? IntegratorSettings::Preconditioner::tangent
+                           : IntegratorSettings::Preconditioner::scalar;
+}
+
+NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options)
+    : system_(system), kind_(kind), options_(options) {
+  const Families& families = system.dynamics().model().families();
+  switch (kind) {
+    case Kind::tangent:
+      matrix_ =
+          system.tangent() == "majoriser" ? bond_pattern(families) : two_hop_pattern(families);
+      break;
+    case Kind::majoriser:
+    case Kind::gamg:
+      matrix_ = bond_pattern(families);
+      break;
+    case Kind::scalar:
+      matrix_ = scalar_bond_pattern(families);
+      scalar_stiffness_ = matrix_;
+      break;
+    case Kind::automatic:
+      throw RunError("NewtonPreconditioner: choose a kind first");
+  }
+  diagonal_ = diagonal_positions(matrix_);
+  create_petsc_matrix(matrix_, kind == Kind::scalar ? 1 : 3);
+  petsc_check(PCCreate(PETSC_COMM_SELF, &pc_), "PCCreate");
+  petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc_), options_), "options");
+  petsc_check(PCSetOptionsPrefix(pc_, "precond_"), "PCSetOptionsPrefix");
+  if (kind == Kind::gamg) {
+    petsc_check(PCSetType(pc_, PCGAMG), "PCSetType");
+  } else {
+    petsc_check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
+    petsc_check(PCFactorSetMatSolverType(pc_, MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
+  }
+  petsc_check(PCSetOperators(pc_, petsc_matrix_, petsc_matrix_), "PCSetOperators");
+  petsc_check(PCSetFromOptions(pc_), "PCSetFromOptions");
+  if (kind == Kind::scalar) {
+    petsc_check(VecCreateSeq(PETSC_COMM_SELF, matrix_.rows, &component_), "VecCreateSeq");
+    petsc_check(VecDuplicate(component_, &component_solution_), "VecDuplicate");
+  }
+}
+
+NewtonPreconditioner::~NewtonPreconditioner() {
+  VecDestroy(&component_);
+  VecDestroy(&component_solution_);
+  PCDestroy(&pc_);
+  MatDestroy(&petsc_matrix_);
+}
+
+void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int block_size) {
+  petsc_check(MatCreate(PETSC_COMM_SELF, &petsc_matrix_), "MatCreate");
+  petsc_check(MatSetSizes(petsc_matrix_, a.rows, a.rows, a.rows, a.rows), "MatSetSizes");
+  petsc_check(MatSetType(petsc_matrix_, MATSEQAIJ), "MatSetType");
+  petsc_check(MatSetBlockSize(petsc_matrix_, block_size), "MatSetBlockSize");
+  petsc_check(MatSeqAIJSetPreallocationCSR(petsc_matrix_, a.offsets.data(), a.columns.data(),
+                                           a.values.data()),
+              "MatSeqAIJSetPreallocationCSR");
+  petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+  petsc_check(MatSetOption(petsc_matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE),
+              "MatSetOption");
+}
+
+void NewtonPreconditioner::refresh(const double* z) {
+  Model& model = system_.dynamics().model();
+  const double inertia = system_.inertia();
+  switch (kind_) {
+    case Kind::tangent:
+      if (system_.tangent() == "majoriser")
+        model.assemble_majoriser(z, matrix_);
+      else
+        model.assemble_tangent(z, matrix_, system_.tangent() == "projected");
+      shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      break;
+    case Kind::majoriser:
+    case Kind::gamg:
+      model.assemble_majoriser(z, matrix_);
+      shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      break;
+    case Kind::scalar:
+      if (!scalar_assembled_) {
+        model.assemble_scalar_stiffness(scalar_stiffness_);
+        scalar_assembled_ = true;
+      }
+      matrix_.values = scalar_stiffness_.values;
+      shift_scalar(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      break;
+    case Kind::automatic:
+      break;
+  }
+  ++assemblies;
+  PetscScalar* values;
+  petsc_check(MatSeqAIJGetArray(petsc_matrix_, &values), "MatSeqAIJGetArray");
+  std::memcpy(values, matrix_.values.data(), matrix_.values.size() * sizeof(double));
+  petsc_check(MatSeqAIJRestoreArray(petsc_matrix_, &values), "MatSeqAIJRestoreArray");
+  if (kind_ == Kind::gamg) {
+    // The rigid-body modes at z: what the majoriser (nearly) does not resist.
+    Vec coordinates;
+    MatNullSpace modes;
+    const PetscInt n = matrix_.rows;
+    petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, z, &coordinates), "VecCreateSeq");
+    petsc_check(MatNullSpaceCreateRigidBody(coordinates, &modes), "MatNullSpaceCreateRigidBody");
+    petsc_check(MatSetNearNullSpace(petsc_matrix_, modes), "MatSetNearNullSpace");
+    MatNullSpaceDestroy(&modes);
+    VecDestroy(&coordinates);
+  }
+  // CHOLMOD reports a matrix that is not positive definite as a failed factorization.
+  const PetscErrorCode code = PCSetUp(pc_);
+  PCFailedReason reason = PC_NOERROR;
+  if (code == 0) petsc_check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
+  if (code != 0 || reason != PC_NOERROR)
+    throw RunError(fmt::format("the {} preconditioner's {}×{} matrix is not positive definite",
+                               preconditioner_name(kind_), matrix_.rows, matrix_.rows));
+  set_up_ = true;
+  ++factorizations;
+}
+
+void NewtonPreconditioner::apply(Vec r, Vec x) {
+  ++back_solves;
+  if (kind_ != Kind::scalar) {
+    petsc_check(PCApply(pc_, r, x), "PCApply");
+    return;
+  }
+  const PetscInt n = matrix_.rows;
+  const PetscScalar* in;
+  PetscScalar* out;
+  petsc_check(VecGetArrayRead(r, &in), "VecGetArrayRead");
+  petsc_check(VecGetArray(x, &out), "VecGetArray");
+  for (int d = 0; d < 3; ++d) {
+    PetscScalar* c;
+    petsc_check(VecGetArray(component_, &c), "VecGetArray");
+    for (PetscInt i = 0; i < n; ++i) c[i] = in[3 * i + d];
+    petsc_check(VecRestoreArray(component_, &c), "VecRestoreArray");
+    petsc_check(PCApply(pc_, component_, component_solution_), "PCApply");
+    const PetscScalar* s;
+    petsc_check(VecGetArrayRead(component_solution_, &s), "VecGetArrayRead");
+    for (PetscInt i = 0; i < n; ++i) out[3 * i + d] = s[i];
+    petsc_check(VecRestoreArrayRead(component_solution_, &s), "VecRestoreArrayRead");
+  }
+  petsc_check(VecRestoreArray(x, &out), "VecRestoreArray");
+  petsc_check(VecRestoreArrayRead(r, &in), "VecRestoreArrayRead");
+}
+
+void NewtonPreconditioner::view(PetscViewer viewer) const {
+  PetscViewerASCIIPrintf(viewer, "Fissure preconditioner: %s (refreshed %ld times)\n",
+                         preconditioner_name(kind_), factorizations);
+  if (set_up_) PCView(pc_, viewer);
+}
+
+}  // namespace fissure

@@ -1,0 +1,59 @@
+#pragma once
+// The preconditioner of petsc_newton's linear solves: a matrix close to the Newton matrix
+// A M + K, assembled and factorized (or set up, for multigrid) at one point and then reused
+// for as many Newton iterations and steps as the refresh policy allows (petsc_newton.cpp).
+//   tangent:   the tangent itself, two-hop 3N×3N, CHOLMOD (an exact Newton matrix when fresh);
+//   majoriser: the bond-wise majoriser K^bw ⪰ K, one-hop 3N×3N, CHOLMOD;
+//   scalar:    A M + L ⊗ I₃ with L the one-hop scalar stiffness (Model::assemble_scalar_stiffness),
+//              N×N, CHOLMOD, applied to the three components;
+//   gamg:      PETSc's algebraic multigrid on the majoriser, rigid-body modes as near null space.
+// The inner PETSc PC reads the options prefixed `precond_` (e.g. -precond_pc_gamg_threshold).
+#include <petscpc.h>
+
+#include <string>
+
+#include "integrators/newton_system.hpp"
+#include "scene/config.hpp"
+
+namespace fissure {
+
+class NewtonPreconditioner {
+ public:
+  using Kind = IntegratorSettings::Preconditioner;
+  NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options);
+  ~NewtonPreconditioner();
+  NewtonPreconditioner(const NewtonPreconditioner&) = delete;
+  NewtonPreconditioner& operator=(const NewtonPreconditioner&) = delete;
+
+  // Assembles the matrix at z with the system's current A, held unknowns and tangent choice,
+  // and factorizes it. Throws RunError when it is not positive definite.
+  void refresh(const double* z);
+  // x = P⁻¹ r.
+  void apply(Vec r, Vec x);
+  // Bonds broke: the scalar stiffness is assembled again at the next refresh.
+  void bonds_changed() { scalar_assembled_ = false; }
+  void view(PetscViewer viewer) const;
+  Kind kind() const { return kind_; }
+  long assemblies = 0, factorizations = 0, back_solves = 0;
+
+ private:
+  void create_petsc_matrix(const SparseSymmetric& a, int block_size);
+
+  NewtonSystem& system_;
+  Kind kind_;
+  PetscOptions options_;
+  SparseSymmetric matrix_;            // what is factorized, in CHOLMOD's and SEQAIJ's layout
+  std::vector<int> diagonal_;         // index of entry (r, r) in matrix_
+  SparseSymmetric scalar_stiffness_;  // scalar: L
+  bool scalar_assembled_ = false;
+  Mat petsc_matrix_ = nullptr;
+  PC pc_ = nullptr;
+  Vec component_ = nullptr, component_solution_ = nullptr;  // scalar: one component, N
+  bool set_up_ = false;
+};
+
+// The preconditioner `auto` picks for a scene of these families (docs/integrators.md).
+IntegratorSettings::Preconditioner choose_preconditioner(const Families& families);
+const char* preconditioner_name(IntegratorSettings::Preconditioner kind);
+
+}  // namespace fissure

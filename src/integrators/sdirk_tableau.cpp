@@ -1,0 +1,52 @@
+#include "integrators/sdirk_tableau.hpp"
+
+#include <cmath>
+
+namespace fissure {
+
+namespace {
+
+// Alexander, SIAM J. Numer. Anal. 14 (1977), Theorem 5: γ the root of γ³ − 3γ² + 3γ/2 − 1/6 in
+// (1/6, 1/2), τ = (1 + γ)/2, b₁ = −(6γ² − 16γ + 1)/4, b₂ = (6γ² − 20γ + 5)/4.
+SdirkTableau alexander() {
+  const double g = 0.43586652150845899942;
+  const double t = 0.5 * (1 + g);
+  const double b1 = -(6 * g * g - 16 * g + 1) / 4, b2 = (6 * g * g - 20 * g + 5) / 4;
+  return {"sdirk3", 3, 3, g, {g, 0, 0, t - g, g, 0, b1, b2, g}, {b1, b2, g}, true};
+}
+
+// Hairer & Wanner, Table IV.6.5 (γ = 1/4, c = 1/4, 3/4, 11/20, 1/2, 1).
+SdirkTableau hairer_wanner() {
+  return {"sdirk4",
+          5,
+          4,
+          0.25,
+          {1. / 4,      0,
+           0,           0,
+           0,  //
+           1. / 2,      1. / 4,
+           0,           0,
+           0,  //
+           17. / 50,    -1. / 25,
+           1. / 4,      0,
+           0,  //
+           371. / 1360, -137. / 2720,
+           15. / 544,   1. / 4,
+           0,  //
+           25. / 24,    -49. / 48,
+           125. / 16,   -85. / 12,
+           1. / 4},
+          {25. / 24, -49. / 48, 125. / 16, -85. / 12, 1. / 4},
+          true};
+}
+
+}  // namespace
+
+const SdirkTableau* find_sdirk_tableau(const std::string& name) {
+  static const SdirkTableau sdirk3 = alexander(), sdirk4 = hairer_wanner();
+  if (name == "sdirk3") return &sdirk3;
+  if (name == "sdirk4") return &sdirk4;
+  return nullptr;
+}
+
+}  // namespace fissure

@@ -1,0 +1,28 @@
+#pragma once
+// Butcher tableaux of the singly diagonally implicit Runge–Kutta schemes petsc_newton offers:
+// every diagonal entry is γ, so every stage's Newton matrix is M/(γh)² + K.
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+struct SdirkTableau {
+  std::string name;
+  int stages;
+  int order;
+  double gamma;            // a_ii
+  std::vector<double> a;   // stages × stages, row major, lower triangular
+  std::vector<double> b;   // weights
+  bool stiffly_accurate;   // b is the last row of a: y_{n+1} is the last stage
+  double c(int i) const {  // Σ_j a_ij
+    double s = 0;
+    for (int j = 0; j < stages; ++j) s += a[i * stages + j];
+    return s;
+  }
+};
+
+// sdirk3: Alexander (1977), 3 stages, order 3, L-stable. sdirk4: Hairer & Wanner, Solving ODEs
+// II, Table IV.6.5, 5 stages, order 4, L-stable. nullptr for any other name.
+const SdirkTableau* find_sdirk_tableau(const std::string& name);
+
+}  // namespace fissure

@@ -1,0 +1,188 @@
+// petsc_newton's factor reuse (modified Newton) and its refresh policy: reusing one factor gives
+// the trajectory of a fresh factorization at every Newton iteration within the Newton
+// tolerance, with far fewer factorizations; a refresh happens (and is counted) when dt changes,
+// when bonds break and when the iterations converge too slowly; every preconditioner and
+// Krylov method reaches the same trajectory.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "integrators/petsc_newton.hpp"
+#include "support/vibration.hpp"
+
+namespace fissure {
+namespace {
+
+// Each stage solved to 1e-10 of its first residual: two runs that both meet it may differ by
+// about that fraction of a step's displacement per step.
+IntegratorSettings newton(const std::string& scheme) {
+  IntegratorSettings s;
+  s.type = "petsc_newton";
+  s.scheme = scheme;
+  s.petsc_options = "-snes_rtol 1e-10 -snes_stol 1e-16";
+  return s;
+}
+
+double statistic(const Integrator& integrator, const std::string& name) {
+  for (const auto& [key, value] : integrator.statistics())
+    if (key == name) return value;
+  ADD_FAILURE() << "no statistic " << name;
+  return -1;
+}
+
+void print_statistics(const char* label, const Integrator& integrator) {
+  std::printf("%s:", label);
+  for (const auto& [name, value] : integrator.statistics())
+    if (value != 0) std::printf(" %s %.0f", name.c_str(), value);
+  std::printf("\n");
+}
+
+struct Trajectory {
+  std::vector<double> position;
+  std::unique_ptr<Integrator> integrator;
+};
+
+Trajectory simulate(test::Vibration& v, const IntegratorSettings& settings, int steps, double dt) {
+  Trajectory r{{}, make_integrator(settings, "test")};
+  State s = v.initial;
+  for (int k = 0; k < steps; ++k) r.integrator->step(*v.dynamics, s, dt);
+  r.position = s.position;
+  return r;
+}
+
+// The largest displacement from the start: the scale the differences are measured against.
+double reach(const test::Vibration& v, const std::vector<double>& y) {
+  return test::max_difference(v.initial.position, y);
+}
+
+// 40 steps at 20× the explicit estimate. A fresh factorization at every Newton iteration is
+// Newton's method; reuse is modified Newton with the same stopping rule, so both stop within
+// 1e-10 of each stage's first residual of the same minimiser: measured differences are far below
+// the 1e-7 of the motion asserted (a factor applied at a wrong A or a stale residual would miss
+// it by orders of magnitude; see the bonds test below).
+TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
+  auto v = test::make_vibration();
+  const double dt = 20 * v->stable_dt;
+  for (const char* scheme : {"backward_euler", "newmark", "sdirk4"}) {
+    IntegratorSettings fresh = newton(scheme);
+    fresh.reuse_factor = false;
+    const Trajectory reused = simulate(*v, newton(scheme), 40, dt);
+    const Trajectory every = simulate(*v, fresh, 40, dt);
+    const double difference = test::max_difference(reused.position, every.position);
+    std::printf("%s: reuse vs fresh factor: max |dy| = %.2e of the motion\n", scheme,
+                difference / reach(*v, every.position));
+    print_statistics("  reuse", *reused.integrator);
+    print_statistics("  fresh", *every.integrator);
+    EXPECT_LT(difference, 1e-7 * reach(*v, every.position)) << scheme;
+    EXPECT_EQ(statistic(*every.integrator, "factorizations"),
+              statistic(*every.integrator, "newton_iterations"))
+        << scheme;
+    // One factor for the whole run: A never changes and the motion is nearly linear.
+    EXPECT_LE(statistic(*reused.integrator, "factorizations"), 3) << scheme;
+  }
+}
+
+// A new dt changes A: the factor is refreshed once at the change, and counted.
+TEST(FactorReuse, RefreshesWhenTheStepSizeChanges) {
+  auto v = test::make_vibration();
+  auto integrator = make_integrator(newton("newmark"), "test");
+  State s = v->initial;
+  for (int k = 0; k < 5; ++k) integrator->step(*v->dynamics, s, 10 * v->stable_dt);
+  EXPECT_EQ(statistic(*integrator, "refreshes_step_size"), 0);
+  const double before = statistic(*integrator, "factorizations");
+  for (int k = 0; k < 5; ++k) integrator->step(*v->dynamics, s, 5 * v->stable_dt);
+  print_statistics("dt change", *integrator);
+  EXPECT_EQ(statistic(*integrator, "refreshes_step_size"), 1);
+  EXPECT_EQ(statistic(*integrator, "factorizations"), before + 1);
+}
+
+// Bonds broken between steps: the factor is refreshed, and the kept force evaluation of the
+// old bonds is not reused: the trajectory equals that of an integrator created after the
+// breaking (a kept stale F(y_n) would start Newton from the unbroken residual).
+TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
+  auto v = test::make_vibration();
+  auto w = test::make_vibration();
+  const double dt = 10 * v->stable_dt;
+  auto integrator = make_integrator(newton("backward_euler"), "test");
+  State s = v->initial;
+  for (int k = 0; k < 3; ++k) integrator->step(*v->dynamics, s, dt);
+  // Break every bond of particle 0 in both models, then go on from the same state.
+  const Families& f = v->scene.families;
+  for (Model* model : {v->model.get(), w->model.get()})
+    for (int b = f.offsets[0]; b < f.offsets[1]; ++b) {
+      model->break_bond(0, b);
+      model->break_bond(f.neighbors[b], f.reverse[b]);
+    }
+  integrator->bonds_changed();
+  State t = s;
+  auto after = make_integrator(newton("backward_euler"), "test");
+  for (int k = 0; k < 3; ++k) {
+    integrator->step(*v->dynamics, s, dt);
+    after->step(*w->dynamics, t, dt);
+  }
+  print_statistics("bonds broken", *integrator);
+  EXPECT_EQ(statistic(*integrator, "refreshes_bonds_broken"), 1);
+  const double difference = test::max_difference(s.position, t.position);
+  std::printf("after breaking: max |dy| to a new integrator = %.2e of the motion\n",
+              difference / reach(*v, t.position));
+  EXPECT_LT(difference, 1e-7 * reach(*v, t.position));
+}
+
+// Slow convergence refreshes: with a contraction limit no modified-Newton iteration can meet,
+// every iteration after the first of a solve refreshes; with an iteration limit of 1, every
+// iteration does. The default limits on this gentle motion refresh never.
+TEST(FactorReuse, RefreshesWhenIterationsDegrade) {
+  auto v = test::make_vibration();
+  const double dt = 20 * v->stable_dt;
+  const Trajectory gentle = simulate(*v, newton("backward_euler"), 10, dt);
+  IntegratorSettings strict = newton("backward_euler");
+  strict.refresh_contraction = 1e-14;
+  const Trajectory contraction = simulate(*v, strict, 10, dt);
+  strict.refresh_contraction = 0.25;
+  strict.refresh_iterations = 1;
+  const Trajectory iterations = simulate(*v, strict, 10, dt);
+  print_statistics("defaults", *gentle.integrator);
+  print_statistics("contraction 1e-14", *contraction.integrator);
+  print_statistics("iterations 1", *iterations.integrator);
+  EXPECT_EQ(statistic(*gentle.integrator, "refreshes_convergence"), 0);
+  EXPECT_GT(statistic(*contraction.integrator, "refreshes_convergence"), 0);
+  const double its = statistic(*iterations.integrator, "newton_iterations");
+  // every iteration but the run's very first (the first refresh) refreshes for convergence
+  EXPECT_EQ(statistic(*iterations.integrator, "refreshes_convergence"), its - 1);
+}
+
+// Every preconditioner and Krylov method solves the same steps: the same trajectory within the
+// Newton tolerance, and the Krylov ones report their iterations.
+TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
+  using P = IntegratorSettings::Preconditioner;
+  using K = IntegratorSettings::Krylov;
+  auto v = test::make_vibration();
+  const double dt = 20 * v->stable_dt;
+  const Trajectory reference = simulate(*v, newton("newmark"), 20, dt);
+  struct Variant {
+    const char* label;
+    P preconditioner;
+    K krylov;
+  };
+  for (const Variant& c : {Variant{"tangent+cg", P::tangent, K::cg},
+                           Variant{"majoriser+cg", P::majoriser, K::automatic},
+                           Variant{"scalar+cg", P::scalar, K::automatic},
+                           Variant{"scalar+gmres", P::scalar, K::gmres},
+                           Variant{"gamg+cg", P::gamg, K::automatic}}) {
+    IntegratorSettings s = newton("newmark");
+    s.preconditioner = c.preconditioner;
+    s.krylov = c.krylov;
+    s.petsc_options += " -ksp_rtol 1e-12";
+    const Trajectory r = simulate(*v, s, 20, dt);
+    const double difference = test::max_difference(r.position, reference.position);
+    std::printf("%s: max |dy| = %.2e of the motion\n", c.label,
+                difference / reach(*v, reference.position));
+    print_statistics("  ", *r.integrator);
+    EXPECT_LT(difference, 1e-7 * reach(*v, reference.position)) << c.label;
+    EXPECT_GT(statistic(*r.integrator, "krylov_iterations"), 0) << c.label;
+    EXPECT_GT(statistic(*r.integrator, "tangent_products"), 0) << c.label;
+  }
+}
+
+}  // namespace
+}  // namespace fissure
