@@ -4,13 +4,16 @@
 #include <petscsnes.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "integrators/newton_line_search.hpp"
 #include "integrators/newton_preconditioner.hpp"
 #include "integrators/newton_system.hpp"
 #include "integrators/petsc_session.hpp"
@@ -43,19 +46,23 @@ struct PetscNewton::Solver {
   Mat matrix = nullptr;  // A M + K, matrix-free (MATSHELL)
   Vec unknowns = nullptr, residual = nullptr;
   std::exception_ptr error;  // an exception raised inside a PETSc callback
+  PotentialLineSearch line_search;
   // Refresh policy (docs/integrators.md, "Factor reuse"): the factor is refreshed at the next
   // Newton iteration when `pending` names a reason, when A or the tangent choice changed since
   // it was made, or when the last iterations converged too slowly.
   const char* pending = "first";
   double factor_inertia = -1;
   std::string factor_tangent;
-  int iterations_since_refresh = 0;
-  std::vector<double> norms;  // |r_k| of the current Newton solve
+  int iterations_since_refresh = 0;  // in the current Newton solve
+  std::vector<double> norms;         // |r_k| of the current Newton solve
+  // |r| that round-off in the positions alone produces (residual_floor): no Newton iteration
+  // can go below it, so a solve there has converged and its contraction means nothing.
+  double floor = 0;
+  double stiffness_bound = 0;  // λ_max of M⁻¹K^bw, from the stable explicit step
   bool reuse = true;
   double refresh_contraction = 0.25;
   int refresh_iterations = 6, refresh_krylov = 40;
   long steps = 0, newton_iterations = 0, linear_solves = 0, krylov_iterations = 0;
-  long line_search_cuts = 0;
   long tangent_fallbacks = 0;  // auto: steps redone with the projected tangent
   long krylov_fallbacks = 0;   // cg met an indefinite matrix: the step redone with gmres
   long step_halvings = 0;      // failed steps redone as two halves
@@ -110,8 +117,13 @@ const char* refresh_reason(Solver& s) {
   if (!s.reuse) return "every_iteration";
   if (s.system.inertia() != s.factor_inertia) return "step_size";
   if (s.system.tangent() != s.factor_tangent) return "fallback";
+  // The scalar preconditioner depends on A and the bonds only: refreshing it for slow
+  // convergence would rebuild the same factor.
+  if (s.preconditioner->kind() == IntegratorSettings::Preconditioner::scalar) return nullptr;
   const std::size_t k = s.norms.size();
-  if (k >= 2 && s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2]) return "convergence";
+  if (k >= 2 && s.norms[k - 2] > 10 * s.floor &&
+      s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2])
+    return "convergence";
   if (s.iterations_since_refresh >= s.refresh_iterations) return "convergence";
   if (s.krylov && k >= 2) {
     PetscInt its = 0;
@@ -185,18 +197,25 @@ PetscErrorCode view_preconditioner(PC pc, PetscViewer viewer) {
   return 0;
 }
 
-// Records |r_k| for the refresh policy and counts Newton iterations whose line search had to
-// shorten the step.
-PetscErrorCode monitor(SNES snes, PetscInt iteration, PetscReal norm, void* context) {
+// PETSc's tests (-snes_rtol, -snes_atol, ... as the user set them), and convergence at the
+// round-off floor of the residual.
+PetscErrorCode converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                         SNESConvergedReason* reason, void* context) {
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  const auto* s = static_cast<Solver*>(context);
+  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && fnorm <= s->floor)
+    *reason = SNES_CONVERGED_FNORM_ABS;
+  return 0;
+}
+
+// Records |r_k| for the refresh policy.
+PetscErrorCode monitor(SNES, PetscInt iteration, PetscReal norm, void* context) {
   auto* s = static_cast<Solver*>(context);
-  if (iteration == 0) s->norms.clear();
+  if (iteration == 0) {
+    s->norms.clear();
+    s->iterations_since_refresh = 0;
+  }
   s->norms.push_back(norm);
-  if (iteration == 0) return 0;
-  SNESLineSearch search;
-  PetscReal lambda = 1;
-  PetscCall(SNESGetLineSearch(snes, &search));
-  PetscCall(SNESLineSearchGetLambda(search, &lambda));
-  if (lambda < 1) ++s->line_search_cuts;
   return 0;
 }
 
@@ -241,7 +260,10 @@ void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::stri
   SNESLineSearch search;
   petsc_check(SNESGetLineSearch(s.snes, &search), "SNESGetLineSearch");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(search), s.options), "options");
-  petsc_check(SNESLineSearchSetType(search, SNESLINESEARCHBT), "SNESLineSearchSetType");
+  petsc_check(SNESLineSearchSetType(search, SNESLINESEARCHSHELL), "SNESLineSearchSetType");
+  s.line_search.system = &s.system;
+  petsc_check(SNESLineSearchShellSetUserFunc(search, potential_line_search, &s.line_search),
+              "SNESLineSearchShellSetUserFunc");
   PC pc;
   petsc_check(SNESGetKSP(s.snes, &s.ksp), "SNESGetKSP");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(s.ksp), s.options), "options");
@@ -271,6 +293,9 @@ void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::stri
   petsc_check(PCShellSetView(pc, view_preconditioner), "PCShellSetView");
   petsc_check(PCShellSetName(pc, "fissure"), "PCShellSetName");
   petsc_check(SNESMonitorSet(s.snes, monitor, &s, nullptr), "SNESMonitorSet");
+  petsc_check(SNESSetConvergenceTest(s.snes, converged, &s, nullptr), "SNESSetConvergenceTest");
+  const double stable = s.system.dynamics().model().stable_time_step();
+  s.stiffness_bound = std::isfinite(stable) ? 4 / (stable * stable) : 0;
   petsc_check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }
 
@@ -284,6 +309,19 @@ bool at_round_off(Solver& s) {
   petsc_check(VecNorm(r, NORM_2, &residual), "VecNorm");
   petsc_check(VecNorm(dz, NORM_2, &update), "VecNorm");
   return residual * update <= 1e-12 * s.system.objective_magnitude();
+}
+
+// The residual's round-off from the positions' alone: an unknown known to ε|z_k| moves its row
+// of A M + K by up to (A + λ_max) m_k ε |z_k|, λ_max ≥ ‖M⁻¹K‖ the stable step's bound (a
+// Gershgorin bound on the majoriser, so on every row). Summed in 2-norm over the free unknowns.
+double residual_floor(const Solver& s, const std::vector<double>& z) {
+  const double scale = s.system.inertia() + s.stiffness_bound;
+  const auto& m = s.system.mass();
+  const auto& fixed = s.system.fixed();
+  double sum = 0;
+  for (std::size_t k = 0; k < z.size(); ++k)
+    if (!fixed[k]) sum += (m[k] * z[k]) * (m[k] * z[k]);
+  return std::numeric_limits<double>::epsilon() * scale * std::sqrt(sum);
 }
 
 // Options the user gave that PETSc never read are most likely typos.
@@ -406,6 +444,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   for (int stage = 0; stage < s.scheme.stages(); ++stage) {
     s.scheme.predict(state, s.acceleration, dynamics.damping(), dt, stage);
     z = s.system.begin_step(s.scheme, state, dt, load);
+    s.floor = residual_floor(s, z);
     // auto: the exact tangent converges quadratically where A M + K is positive definite; where
     // it is not, or Newton fails with it, the stage is redone with the projected tangent K⁺ ⪰ K.
     if (settings_.tangent == "auto") {
@@ -461,7 +500,7 @@ Statistics PetscNewton::statistics() const {
   return {{"newton_iterations", double(s.newton_iterations)},
           {"linear_solves", double(s.linear_solves)},
           {"krylov_iterations", double(s.krylov_iterations)},
-          {"line_search_cuts", double(s.line_search_cuts)},
+          {"line_search_cuts", double(s.line_search.cuts)},
           {"assemblies", double(p.assemblies)},
           {"factorizations", double(p.factorizations)},
           {"back_solves", double(p.back_solves)},

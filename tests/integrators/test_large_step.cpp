@@ -148,13 +148,17 @@ TEST(LargeStep, GeneralizedAlphaStaysFiniteAndDamps) {
 }
 
 // petsc_newton's L-stable SDIRK schemes (|R(iωh)| < 1 for every ω > 0, so on a linear system
-// every mode's energy shrinks each step): the energy never grows (1e-9 slack for the Newton
-// tolerance) and ends below the start.
+// every mode's energy shrinks each step): the energy never grows and ends below the start. Each
+// stage is solved to 1e-10 of its first residual: at the default 1e-6 the five stages' Newton
+// errors let the energy grow by up to 1e-7 E0 in a step (measured 9.9e-8 E0 for sdirk4) once
+// little energy is left; at 1e-10 the bound is the backward Euler test's 1e-9.
 class LargeStepSdirk : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(LargeStepSdirk, EnergyNeverGrows) {
   auto a = anchored_bar();
-  const Released run = run_hundred_times(*a, petsc(GetParam()));
+  IntegratorSettings settings = petsc(GetParam());
+  settings.petsc_options = "-snes_rtol 1e-10";
+  const Released run = run_hundred_times(*a, settings);
   ASSERT_FALSE(run.position.empty());
   EXPECT_LT(run.worst_growth, 1e-9);
   EXPECT_LT(run.final_energy, 1.0);

@@ -1,0 +1,22 @@
+#pragma once
+// petsc_newton's line search on the incremental potential E (a PETSc shell line search): the
+// full step when it decreases E enough (Armijo, c = 1e-4), which costs one evaluation of E and
+// ∇E together and nothing more; else backtracking by safeguarded quadratic fits. Near the
+// solution E's decrease falls below the round-off of E itself (extensions of stiff materials are
+// tiny differences of lengths), where no test on E can decide: a step that keeps E within that
+// round-off and lowers |∇E| is then taken.
+#include <petscsnes.h>
+
+#include "integrators/newton_system.hpp"
+
+namespace fissure {
+
+struct PotentialLineSearch {
+  NewtonSystem* system = nullptr;
+  long cuts = 0;  // steps shorter than the full step
+};
+
+// The SNESLineSearchUserFunc; `context` is a PotentialLineSearch.
+PetscErrorCode potential_line_search(SNESLineSearch search, void* context);
+
+}  // namespace fissure
