@@ -1,6 +1,7 @@
 #include "integrators/newton_preconditioner.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 #include <petscmat.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "integrators/petsc_session.hpp"
+#include "linear/blas_threads.hpp"
 #include "linear/shifted_system.hpp"
 
 namespace fissure {
@@ -153,8 +155,11 @@ void NewtonPreconditioner::refresh(const double* z) {
     MatNullSpaceDestroy(&modes);
     VecDestroy(&coordinates);
   }
-  // CHOLMOD reports a matrix that is not positive definite as a failed factorization.
+  // CHOLMOD reports a matrix that is not positive definite as a failed factorization. BLAS
+  // threads help the factorization's dense blocks, not the solves (blas_threads.hpp).
+  set_blas_threads(omp_get_max_threads());
   const PetscErrorCode code = PCSetUp(pc_);
+  set_blas_threads(1);
   PCFailedReason reason = PC_NOERROR;
   if (code == 0) petsc_check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
   if (code != 0 || reason != PC_NOERROR)
