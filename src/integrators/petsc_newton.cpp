@@ -63,9 +63,10 @@ struct PetscNewton::Solver {
   double refresh_contraction = 0.25;
   int refresh_iterations = 6, refresh_krylov = 40;
   long steps = 0, newton_iterations = 0, linear_solves = 0, krylov_iterations = 0;
-  long tangent_fallbacks = 0;  // auto: steps redone with the projected tangent
-  long krylov_fallbacks = 0;   // cg met an indefinite matrix: the step redone with gmres
-  long step_halvings = 0;      // failed steps redone as two halves
+  long tangent_fallbacks = 0;     // auto: steps redone with the projected tangent
+  long krylov_fallbacks = 0;      // cg met an indefinite matrix: the step redone with gmres
+  long step_halvings = 0;         // failed steps redone as two halves
+  long fresh_newton_retries = 0;  // stages that failed with a reused factor, redone without
   long refreshes_step_size = 0, refreshes_bonds = 0, refreshes_convergence = 0;
   long refreshes_fallback = 0, refreshes_every_iteration = 0;
   bool krylov = false;  // a Krylov method runs on the matrix-free tangent
@@ -447,12 +448,28 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     s.floor = residual_floor(s, z);
     // auto: the exact tangent converges quadratically where A M + K is positive definite; where
     // it is not, or Newton fails with it, the stage is redone with the projected tangent K⁺ ⪰ K.
-    if (settings_.tangent == "auto") {
-      if (!solve("exact")) {
-        ++s.tangent_fallbacks;
-        solve("projected");
+    auto solve_stage = [&] {
+      if (settings_.tangent == "auto") {
+        if (!solve("exact")) {
+          ++s.tangent_fallbacks;
+          return solve("projected");
+        }
+        return true;
       }
-    } else if (!solve(settings_.tangent) && reason == SNES_DIVERGED_LINEAR_SOLVE) {
+      return solve(settings_.tangent);
+    };
+    bool solved = solve_stage();
+    // A reused factor converges linearly at best: a stage that fails with it is redone with a
+    // fresh factorization at every iteration (Newton's own convergence) before the step is
+    // halved.
+    if (!solved && s.reuse) {
+      ++s.fresh_newton_retries;
+      s.reuse = false;
+      solved = solve_stage();
+      s.reuse = true;
+      s.pending = "fallback";
+    }
+    if (!solved && settings_.tangent != "auto" && reason == SNES_DIVERGED_LINEAR_SOLVE) {
       return fmt::format(
           "petsc_newton ({}): the linear solve failed in the step from t = {:.6g} s: the '{}' "
           "tangent is not positive definite there; use integrator.tangent: auto or projected",
@@ -508,6 +525,7 @@ Statistics PetscNewton::statistics() const {
           {"linearizations", double(y.linearizations)},
           {"tangent_fallbacks", double(s.tangent_fallbacks)},
           {"step_halvings", double(s.step_halvings)},
+          {"fresh_newton_retries", double(s.fresh_newton_retries)},
           {"residual_evaluations", double(y.residual_passes)},
           {"objective_evaluations", double(y.objective_passes)},
           {"reused_evaluations", double(y.cache_hits)},

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,8 +12,10 @@
 #include "app/simulation.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "model/model.hpp"
 #include "render/external_program.hpp"
 #include "scene/config.hpp"
+#include "scene/scene.hpp"
 #include "study/plot_script.hpp"
 #include "study/study_config.hpp"
 #include "study/study_errors.hpp"
@@ -52,7 +55,8 @@ double dividing_step(double dt, double interval) {
 
 const char* kColumns =
     "run,parameter,value,dt,status,wall_seconds,step_seconds,steps,force_evaluations,"
-    "newton_iterations,linear_solves,factorizations,error_max,error_rms,probe_error,message";
+    "newton_iterations,linear_solves,factorizations,error_max,error_rms,probe_error,message,"
+    "probe_error_amplitude,krylov_iterations,back_solves";
 
 std::vector<std::string> fields(const StudyRow& r) {
   const RunSummary& s = r.summary;
@@ -72,7 +76,10 @@ std::vector<std::string> fields(const StudyRow& r) {
           cell(r.error.max),
           cell(r.error.rms),
           cell(r.error.probe),
-          r.message};
+          r.message,
+          cell(r.error.probe_amplitude),
+          ran ? cell(statistic(s, "krylov_iterations")) : "",
+          ran ? cell(statistic(s, "back_solves")) : ""};
 }
 
 std::string csv_quoted(const std::string& text) {
@@ -82,7 +89,8 @@ std::string csv_quoted(const std::string& text) {
   return q + "\"";
 }
 
-void write_results(const std::string& folder, const std::vector<StudyRow>& rows) {
+void write_results(const std::string& folder, const std::vector<StudyRow>& rows,
+                   const std::string& target) {
   write_atomically(folder + "/results.csv", [&](std::ostream& out) {
     out << kColumns << "\n";
     for (const auto& r : rows) {
@@ -93,15 +101,17 @@ void write_results(const std::string& folder, const std::vector<StudyRow>& rows)
   });
   write_atomically(folder + "/results.md", [&](std::ostream& out) {
     out << "| run | parameter | value | dt | status | wall s | stepping s | steps | force evals | "
-           "Newton its | linear solves | factorizations | max err/d | RMS err/d | probe err/d |\n"
-        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+           "Newton its | linear solves | factorizations | max err/d | RMS err/d | probe err/d | "
+           "probe err/amplitude | Krylov its | back-solves |\n"
+        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : rows) {
       auto f = fields(r);
-      f.pop_back();  // the message goes below the table
+      f.erase(f.begin() + 15);  // the message goes below the table
       out << "|";
       for (const auto& v : f) out << " " << v << " |";
       out << "\n";
     }
+    out << target;
     for (const auto& r : rows)
       if (!r.message.empty())
         out << fmt::format("\n- {} {} = {}: {}\n", r.point.run, r.point.parameter,
@@ -122,6 +132,54 @@ Config point_config(const StudyConfig& study, const StudyPoint& point, double in
   Config c = load_config(study.scene, overrides);
   c.output.dir = dir;
   return c;
+}
+
+// dt: auto of a run: the scene's safety × the stable estimate, rounded down to divide the
+// compare interval.
+double auto_step(const StudyConfig& study, const StudyPoint& point, double interval) {
+  std::vector<std::string> overrides = study.scene_set;
+  overrides.insert(overrides.end(), point.overrides.begin(), point.overrides.end());
+  const Config c = load_config(study.scene, overrides);
+  const Scene scene = build_scene(c);
+  const double stable = make_model(scene)->stable_time_step();
+  return dividing_step(c.time.safety * stable, interval);
+}
+
+// For each run, its fastest point within the target, side by side with the baseline's first
+// point: what the target accuracy costs in stepping time.
+std::string target_summary(const StudyConfig& study, const std::vector<StudyRow>& rows) {
+  auto seconds = [](const StudyRow& r) { return r.summary.seconds_per_step * r.summary.steps; };
+  const StudyRow* baseline = nullptr;
+  for (const auto& r : rows)
+    if (r.point.run == study.target_baseline && r.status == "ok") {
+      baseline = &r;
+      break;
+    }
+  std::string text = fmt::format(
+      "\nFastest point of each run whose probe error stays within {:g} of the amplitude, against "
+      "{}:\n\n| run | dt | probe err/amplitude | stepping s | steps | speed-up over {} |\n"
+      "|---|---|---|---|---|---|\n",
+      study.target_error, study.target_baseline, study.target_baseline);
+  std::vector<std::string> names;
+  for (const auto& r : rows)
+    if (std::find(names.begin(), names.end(), r.point.run) == names.end())
+      names.push_back(r.point.run);
+  for (const auto& name : names) {
+    const StudyRow* best = nullptr;
+    for (const auto& r : rows)
+      if (r.point.run == name && r.status == "ok" &&
+          r.error.probe_amplitude <= study.target_error && (!best || seconds(r) < seconds(*best)))
+        best = &r;
+    if (name == study.target_baseline && baseline) best = baseline;
+    if (!best) {
+      text += fmt::format("| {} | none within the target | | | | |\n", name);
+      continue;
+    }
+    text += fmt::format("| {} | {:.4g} | {:.3g} | {:.3g} | {} | {} |\n", name, best->dt,
+                        best->error.probe_amplitude, seconds(*best), best->summary.steps,
+                        baseline ? fmt::format("{:.2f}", seconds(*baseline) / seconds(*best)) : "");
+  }
+  return text;
 }
 
 bool make_plot(const std::string& folder) {
@@ -189,6 +247,7 @@ StudyOutcome run_study(const std::string& study_file, bool progress) {
     row.point = point;
     const std::string dir = runs_dir + "/" + folder_name(point);
     row.dt = point.parameter == "dt" ? dividing_step(point.value, interval) : 0;
+    if (point.parameter == "dt" && point.value == 0) row.dt = auto_step(study, point, interval);
     if (progress)
       fmt::print(stderr, "study: {} {} = {:.3g}\n", point.run, point.parameter, point.value);
     try {
@@ -215,7 +274,12 @@ StudyOutcome run_study(const std::string& study_file, bool progress) {
                    : ": " + row.message);
     std::fflush(stdout);
     rows.push_back(row);
-    write_results(study.output_dir, rows);
+    write_results(study.output_dir, rows, "");
+  }
+  if (study.target_error > 0) {
+    const std::string verdict = target_summary(study, rows);
+    fmt::print("{}", verdict);
+    write_results(study.output_dir, rows, verdict);
   }
   outcome.plotted = make_plot(study.output_dir);
   return outcome;

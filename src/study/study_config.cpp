@@ -37,13 +37,19 @@ std::string integrator_override(const YamlReader& r, const YAML::Node& node,
   return std::string("integrator=") + out.c_str();
 }
 
-std::vector<double> positive_list(const YamlReader& r, const YAML::Node& node,
-                                  const std::string& path) {
+// A dt or rtol list; with `allow_auto`, an entry `auto` (the scene's stable estimate) is 0.
+std::vector<double> sweep_values(const YamlReader& r, const YAML::Node& node,
+                                 const std::string& path, bool allow_auto) {
   if (!node.IsSequence() || node.size() == 0)
-    r.fail(path, "expected a non-empty list of positive numbers");
+    r.fail(path, allow_auto ? "expected a non-empty list of positive numbers or auto"
+                            : "expected a non-empty list of positive numbers");
   std::vector<double> values;
-  for (std::size_t k = 0; k < node.size(); ++k)
-    values.push_back(r.positive(node[k], fmt::format("{}[{}]", path, k)));
+  for (std::size_t k = 0; k < node.size(); ++k) {
+    if (allow_auto && node[k].IsScalar() && node[k].Scalar() == "auto")
+      values.push_back(0);
+    else
+      values.push_back(r.positive(node[k], fmt::format("{}[{}]", path, k)));
+  }
   return values;
 }
 
@@ -52,7 +58,7 @@ std::vector<double> positive_list(const YamlReader& r, const YAML::Node& node,
 StudyConfig load_study(const std::string& path) {
   const YamlReader r(path);
   const YAML::Node root = load_yaml_with_base(path);
-  r.check_keys(root, "", {"scene", "set", "every", "reference", "runs", "output"});
+  r.check_keys(root, "", {"scene", "set", "every", "reference", "runs", "output", "target"});
   StudyConfig c;
   c.file = path;
   if (!root["scene"]) r.fail("scene", "missing: the scene file to study");
@@ -116,7 +122,7 @@ StudyConfig load_study(const std::string& path) {
       r.fail(join(p, "rtol"),
              "an rtol sweep needs an adaptive integrator (arkode without "
              "fixed_step); sweep dt instead");
-    for (double value : positive_list(r, run[parameter], join(p, parameter))) {
+    for (double value : sweep_values(r, run[parameter], join(p, parameter), parameter == "dt")) {
       StudyPoint point{name, parameter, value, {integrator}};
       if (parameter == "rtol") {
         point.overrides.push_back(fmt::format("integrator.rtol={:.17g}", value));
@@ -125,6 +131,18 @@ StudyConfig load_study(const std::string& path) {
       }
       c.points.push_back(point);
     }
+  }
+  if (const auto target = root["target"]) {
+    r.check_keys(target, "target", {"probe_error", "baseline"});
+    if (!target["probe_error"])
+      r.fail("target.probe_error", "missing: e.g. 0.01 (1% of the amplitude)");
+    c.target_error = r.positive(target["probe_error"], "target.probe_error");
+    if (!target["baseline"])
+      r.fail("target.baseline", "missing: the name of the run to compare with");
+    c.target_baseline = r.string(target["baseline"], "target.baseline");
+    bool found = false;
+    for (const auto& point : c.points) found = found || point.run == c.target_baseline;
+    if (!found) r.fail("target.baseline", fmt::format("no run is named '{}'", c.target_baseline));
   }
   return c;
 }

@@ -12,7 +12,7 @@ namespace fissure {
 struct StudyPoint {
   std::string run;        // the configuration's name
   std::string parameter;  // "dt", "rtol" or "" (the reference, or a run without a sweep)
-  double value = 0;       // the swept value
+  double value = 0;       // the swept value; 0 for dt: auto (the scene's stable estimate)
   std::vector<std::string> overrides;
 };
 
@@ -27,6 +27,10 @@ struct StudyConfig {
   StudyPoint reference_run;
   std::string reference_probes;  // CSV path, resolved against the study file
   std::vector<StudyPoint> points;
+  // target: the fastest point of each run whose probe error stays within `target_error` of the
+  // motion's amplitude, against the baseline run's first point (0: no target).
+  double target_error = 0;
+  std::string target_baseline;
 };
 
 // Reads and checks a study file; InputError naming the file, the key and the reason.

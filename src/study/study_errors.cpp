@@ -126,11 +126,26 @@ StudyError study_error(const std::string& run_dir, const std::string& reference_
       if (a < 0 || b < 0) continue;
       double d2 = 0;
       for (int c = 0; c < 3; ++c) d2 += std::pow(it->second[a][c] - reference[b][c], 2);
-      worst = std::max(worst, std::sqrt(d2) / diagonal);
+      worst = std::max(worst, std::sqrt(d2));
     }
   }
-  if (worst >= 0) e.probe = worst;
+  if (worst >= 0) {
+    e.probe = worst / diagonal;
+    const double amplitude = probe_amplitude(reference_probes);
+    if (amplitude > 0) e.probe_amplitude = worst / amplitude;
+  }
   return e;
+}
+
+double probe_amplitude(const ProbePositions& probes) {
+  double amplitude = 0;
+  for (const auto& [name, rows] : probes.position)
+    for (const auto& x : rows) {
+      double d2 = 0;
+      for (int c = 0; c < 3; ++c) d2 += std::pow(x[c] - rows.front()[c], 2);
+      amplitude = std::max(amplitude, std::sqrt(d2));
+    }
+  return amplitude;
 }
 
 }  // namespace fissure

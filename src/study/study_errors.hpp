@@ -15,6 +15,9 @@ struct StudyError {
   double max = std::numeric_limits<double>::quiet_NaN();
   double rms = std::numeric_limits<double>::quiet_NaN();
   double probe = std::numeric_limits<double>::quiet_NaN();
+  // The same probe error over the reference's amplitude: the largest distance of a reference
+  // probe from its position at t = 0 (the motion's amplitude, not the body's size).
+  double probe_amplitude = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Probe positions from a probes.csv: per probe name, one [x, y, z] per row, and the row times.
@@ -25,6 +28,9 @@ struct ProbePositions {
 
 // Reads the `<probe>.pos_x/y/z` columns of a probes.csv; InputError naming the file otherwise.
 ProbePositions read_probe_positions(const std::string& csv);
+
+// The largest distance of any probe from its first row's position, over all rows [m].
+double probe_amplitude(const ProbePositions& probes);
 
 // Diagonal of the bounding box of the particles in frame 0 of a run folder.
 double frame_diagonal(const std::string& run_dir);
