@@ -224,17 +224,22 @@ StudyOutcome run_study(const std::string& study_file, bool progress) {
   const std::string runs_dir = study.output_dir + "/runs";
 
   std::string reference_dir;
+  StudyRow reference_row;  // the reference run, a baseline for target: {baseline: reference}
   ProbePositions reference_probes;
   double diagonal = 0;
   if (study.reference_is_run) {
     reference_dir = study.output_dir + "/reference";
     const StudyPoint& ref = study.reference_run;
-    const double dt = ref.parameter == "dt" ? dividing_step(ref.value, interval) : 0;
+    double dt = ref.parameter == "dt" ? dividing_step(ref.value, interval) : 0;
+    if (ref.parameter == "dt" && ref.value == 0) dt = auto_step(study, ref, interval);
     if (progress) fmt::print(stderr, "study: reference run into {}\n", reference_dir);
     const Config c = point_config(study, ref, interval, reference_dir, dt);
     RunOptions options;
     options.progress = progress;
-    run_simulation(c, options);
+    reference_row.point = ref;
+    reference_row.summary = run_simulation(c, options);
+    reference_row.dt = reference_row.summary.dt;
+    reference_row.error.probe_amplitude = 0;
     reference_probes = read_probe_positions(reference_dir + "/probes.csv");
     diagonal = frame_diagonal(reference_dir);
   } else {
@@ -277,7 +282,9 @@ StudyOutcome run_study(const std::string& study_file, bool progress) {
     write_results(study.output_dir, rows, "");
   }
   if (study.target_error > 0) {
-    const std::string verdict = target_summary(study, rows);
+    std::vector<StudyRow> candidates = rows;
+    if (study.target_baseline == "reference") candidates.insert(candidates.begin(), reference_row);
+    const std::string verdict = target_summary(study, candidates);
     fmt::print("{}", verdict);
     write_results(study.output_dir, rows, verdict);
   }

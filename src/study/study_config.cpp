@@ -92,7 +92,9 @@ StudyConfig load_study(const std::string& path) {
         integrator_override(r, reference["integrator"], "reference.integrator"));
     if (reference["dt"]) {
       c.reference_run.parameter = "dt";
-      c.reference_run.value = r.positive(reference["dt"], "reference.dt");
+      const YAML::Node dt = reference["dt"];
+      c.reference_run.value =
+          dt.IsScalar() && dt.Scalar() == "auto" ? 0 : r.positive(dt, "reference.dt");
     } else if (!adaptive(r, reference["integrator"], "reference.integrator")) {
       r.fail("reference.dt", "missing: a fixed-step reference needs its step");
     }
@@ -140,7 +142,7 @@ StudyConfig load_study(const std::string& path) {
     if (!target["baseline"])
       r.fail("target.baseline", "missing: the name of the run to compare with");
     c.target_baseline = r.string(target["baseline"], "target.baseline");
-    bool found = false;
+    bool found = c.target_baseline == "reference" && c.reference_is_run;
     for (const auto& point : c.points) found = found || point.run == c.target_baseline;
     if (!found) r.fail("target.baseline", fmt::format("no run is named '{}'", c.target_baseline));
   }

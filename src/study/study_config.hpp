@@ -28,7 +28,8 @@ struct StudyConfig {
   std::string reference_probes;  // CSV path, resolved against the study file
   std::vector<StudyPoint> points;
   // target: the fastest point of each run whose probe error stays within `target_error` of the
-  // motion's amplitude, against the baseline run's first point (0: no target).
+  // motion's amplitude, against the baseline run's first point, or the reference run itself
+  // when the baseline is "reference" (0: no target).
   double target_error = 0;
   std::string target_baseline;
 };

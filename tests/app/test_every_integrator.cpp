@@ -3,6 +3,7 @@
 // splitting): summary.json's post_steps, counted inside PostStep, equals the steps taken.
 #include <gtest/gtest.h>
 
+#include <regex>
 #include <string>
 
 #include "app/run_fissure.hpp"
@@ -35,6 +36,15 @@ TEST_P(EveryIntegrator, GlassWallBreaksThroughTheSharedPostStep) {
   EXPECT_EQ(post_steps, steps);
   EXPECT_GT(broken, 0);
   EXPECT_TRUE(std::filesystem::exists(dir / "surface_000004.obj"));
+  // petsc_newton reuses its factor across steps: broken bonds must have refreshed it.
+  if (std::string(GetParam().label) == "petsc_newton") {
+    const std::string text = test::slurp(dir / "summary.json");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(text, m, std::regex(R"("refreshes_bonds_broken"\s*:\s*([0-9]+))")))
+        << text;
+    std::printf("petsc_newton: %s refreshes after bonds broke\n", m[1].str().c_str());
+    EXPECT_GT(std::stol(m[1].str()), 0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
