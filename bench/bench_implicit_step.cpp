@@ -15,6 +15,7 @@
 #include <string>
 
 #include "integrators/integrator.hpp"
+#include "integrators/newton_preconditioner.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -78,6 +79,9 @@ int main(int argc, char** argv) {
   fmt::print("particles {}\n", n);
   fmt::print("directed_bonds {}\n", scene.families.directed_bonds());
   fmt::print("scheme {}\npreconditioner {}\n", scheme, preconditioner);
+  if (preconditioner == "auto")
+    fmt::print("preconditioner_chosen {}\n",
+               fissure::preconditioner_name(fissure::choose_preconditioner(scene.families)));
   fmt::print("dt {:.4g}\nexplicit_dt_factor {}\n", dt, factor);
   fmt::print("scene_seconds {:.3f}\n", scene_seconds);
   fmt::print("first_step_seconds {:.4f}\n", first_seconds);

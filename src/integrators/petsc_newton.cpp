@@ -4,6 +4,7 @@
 #include <petscsnes.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -47,12 +48,15 @@ struct PetscNewton::Solver {
   Vec unknowns = nullptr, residual = nullptr;
   std::exception_ptr error;  // an exception raised inside a PETSc callback
   PotentialLineSearch line_search;
-  // Refresh policy (docs/integrators.md, "Factor reuse"): the factor is refreshed at the next
-  // Newton iteration when `pending` names a reason, when A or the tangent choice changed since
-  // it was made, or when the last iterations converged too slowly.
-  const char* pending = "first";
+  // Refresh policy (docs/integrators.md, "The linear solves"): the factor is refreshed at the
+  // next Newton iteration when `pending` names a reason, when A or the tangent choice changed
+  // since it was made, or when the last iterations converged too slowly.
+  enum Refresh { none, first, step_size, bonds, convergence, fallback, every_iteration, reasons };
+  Refresh pending = first;
+  std::array<long, reasons> refreshes{};  // per reason
   double factor_inertia = -1;
   std::string factor_tangent;
+  bool factor_failed = false;        // the last refresh met a matrix not positive definite
   int iterations_since_refresh = 0;  // in the current Newton solve
   std::vector<double> norms;         // |r_k| of the current Newton solve
   // |r| that round-off in the positions alone produces (residual_floor): no Newton iteration
@@ -67,9 +71,7 @@ struct PetscNewton::Solver {
   long krylov_fallbacks = 0;      // cg met an indefinite matrix: the step redone with gmres
   long step_halvings = 0;         // failed steps redone as two halves
   long fresh_newton_retries = 0;  // stages that failed with a reused factor, redone without
-  long refreshes_step_size = 0, refreshes_bonds = 0, refreshes_convergence = 0;
-  long refreshes_fallback = 0, refreshes_every_iteration = 0;
-  bool krylov = false;  // a Krylov method runs on the matrix-free tangent
+  bool krylov = false;            // a Krylov method runs on the matrix-free tangent
   bool options_checked = false;
 };
 
@@ -112,26 +114,26 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
   });
 }
 
-// Why the factor must be refreshed before this Newton iteration's linear solve, or nullptr.
-const char* refresh_reason(Solver& s) {
-  if (s.pending) return s.pending;
-  if (!s.reuse) return "every_iteration";
-  if (s.system.inertia() != s.factor_inertia) return "step_size";
-  if (s.system.tangent() != s.factor_tangent) return "fallback";
+// Why the factor must be refreshed before this Newton iteration's linear solve, or none.
+Solver::Refresh refresh_reason(Solver& s) {
+  if (s.pending != Solver::none) return s.pending;
+  if (!s.reuse) return Solver::every_iteration;
+  if (s.system.inertia() != s.factor_inertia) return Solver::step_size;
+  if (s.system.tangent() != s.factor_tangent) return Solver::fallback;
   // The scalar preconditioner depends on A and the bonds only: refreshing it for slow
   // convergence would rebuild the same factor.
-  if (s.preconditioner->kind() == IntegratorSettings::Preconditioner::scalar) return nullptr;
+  if (s.preconditioner->kind() == IntegratorSettings::Preconditioner::scalar) return Solver::none;
   const std::size_t k = s.norms.size();
   if (k >= 2 && s.norms[k - 2] > 10 * s.floor &&
       s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2])
-    return "convergence";
-  if (s.iterations_since_refresh >= s.refresh_iterations) return "convergence";
+    return Solver::convergence;
+  if (s.iterations_since_refresh >= s.refresh_iterations) return Solver::convergence;
   if (s.krylov && k >= 2) {
     PetscInt its = 0;
     petsc_check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
-    if (its > s.refresh_krylov) return "convergence";
+    if (its > s.refresh_krylov) return Solver::convergence;
   }
-  return nullptr;
+  return Solver::none;
 }
 
 // The Newton matrix is matrix-free; what PETSc calls the Jacobian evaluation only moves its
@@ -142,24 +144,20 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
     const PetscScalar* z;
     petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
     s->system.linearize(z);
-    const char* reason = refresh_reason(*s);
-    if (reason) {
-      const std::string why = reason;
-      s->pending = nullptr;
+    const Solver::Refresh reason = refresh_reason(*s);
+    if (reason != Solver::none) {
+      s->pending = Solver::none;
       s->factor_inertia = s->system.inertia();
       s->factor_tangent = s->system.tangent();
       s->iterations_since_refresh = 0;
-      if (why == "step_size") ++s->refreshes_step_size;
-      if (why == "bonds") ++s->refreshes_bonds;
-      if (why == "convergence") ++s->refreshes_convergence;
-      if (why == "fallback") ++s->refreshes_fallback;
-      if (why == "every_iteration") ++s->refreshes_every_iteration;
+      ++s->refreshes[reason];
       try {
         s->preconditioner->refresh(z);
       } catch (const RunError&) {
         // Not positive definite: the solve fails like a failed linear solve, and the step is
         // redone (auto tangent: with the projected tangent) or halved.
-        s->pending = "fallback";
+        s->pending = Solver::fallback;
+        s->factor_failed = true;
         petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
         throw;
       }
@@ -374,7 +372,7 @@ void PetscNewton::bonds_changed() {
   if (!solver_) return;
   solver_->system.model_changed();
   solver_->preconditioner->bonds_changed();
-  solver_->pending = "bonds";
+  solver_->pending = Solver::bonds;
 }
 
 void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
@@ -425,7 +423,8 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
       try {
         std::rethrow_exception(error);
       } catch (const RunError&) {
-        if (!s.pending) throw;  // a factor that is not positive definite is a failed solve
+        // a factor that is not positive definite is a failed solve; anything else is an error
+        if (!std::exchange(s.factor_failed, false)) throw;
       }
     }
     PetscInt krylov = 0;
@@ -467,7 +466,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
       s.reuse = false;
       solved = solve_stage();
       s.reuse = true;
-      s.pending = "fallback";
+      s.pending = Solver::fallback;
     }
     if (!solved && settings_.tangent != "auto" && reason == SNES_DIVERGED_LINEAR_SOLVE) {
       return fmt::format(
@@ -529,11 +528,11 @@ Statistics PetscNewton::statistics() const {
           {"residual_evaluations", double(y.residual_passes)},
           {"objective_evaluations", double(y.objective_passes)},
           {"reused_evaluations", double(y.cache_hits)},
-          {"refreshes_step_size", double(s.refreshes_step_size)},
-          {"refreshes_bonds_broken", double(s.refreshes_bonds)},
-          {"refreshes_convergence", double(s.refreshes_convergence)},
-          {"refreshes_fallback", double(s.refreshes_fallback)},
-          {"refreshes_every_iteration", double(s.refreshes_every_iteration)}};
+          {"refreshes_step_size", double(s.refreshes[Solver::step_size])},
+          {"refreshes_bonds_broken", double(s.refreshes[Solver::bonds])},
+          {"refreshes_convergence", double(s.refreshes[Solver::convergence])},
+          {"refreshes_fallback", double(s.refreshes[Solver::fallback])},
+          {"refreshes_every_iteration", double(s.refreshes[Solver::every_iteration])}};
 }
 
 std::string PetscNewton::solver_view() const {

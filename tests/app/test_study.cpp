@@ -2,6 +2,7 @@
 // and the error falls with dt at the rate of each integrator's order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -82,6 +83,70 @@ TEST(Study, ErrorFallsWithDtAtEachIntegratorsOrder) {
     EXPECT_LT(e[2], e[1]) << run;
     EXPECT_NEAR(observed, order.at(run), 0.3) << run;
   }
+}
+
+// dt: auto takes the scene's stable estimate (rounded down to divide `every`); the probe error
+// over the amplitude is the probe error over d times d / amplitude, with the amplitude read from
+// the reference's probes.csv; the target table names, per run, its fastest point within the
+// target and its speed-up over the baseline, and "none" for a run with no point within it.
+TEST(Study, AutoStepAmplitudeErrorAndTargetTable) {
+  const fs::path dir = test::scratch_dir("study_target");
+  const std::string scene = std::string(FISSURE_SOURCE_DIR) + "/configs/compare/bar_swing.yaml";
+  test::write_file(dir / "target.yaml",
+                   "scene: " + scene +
+                       "\nset: [\"time.end=0.01\", \"bodies[0].resolution=0.1\"]\nevery: 0.005\n"
+                       "reference: {integrator: {type: velocity_verlet}, dt: 2.5e-6}\n"
+                       "target: {probe_error: 0.05, baseline: velocity_verlet}\nruns:\n"
+                       "  - {name: velocity_verlet, integrator: {type: velocity_verlet}, dt: [auto]}\n"
+                       "  - {name: coarse, integrator: {type: petsc_newton, scheme: "
+                       "backward_euler}, dt: [0.005]}\n"
+                       "output: {dir: " + (dir / "out").string() + "}\n");
+  const auto outcome = test::run_fissure("study " + (dir / "target.yaml").string());
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
+  const auto rows = read_csv(dir / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  // The stable estimate of this scene (fissure info) times the default safety, divided down.
+  const auto info = test::run_fissure("info " + scene + " --set bodies[0].resolution=0.1");
+  const auto at = info.output.find("stable dt estimate: ");
+  ASSERT_NE(at, std::string::npos) << info.output;
+  const double stable = std::stod(info.output.substr(at + 20));
+  const double dt = std::stod(rows[0].at("dt"));
+  std::printf("dt: auto -> %.4g s (stable estimate %.4g s)\n", dt, stable);
+  EXPECT_LE(dt, stable);
+  EXPECT_GT(dt, 0.5 * stable);
+  // a whole number of steps per compare interval, to the 6 digits results.csv keeps
+  EXPECT_NEAR(0.005 / dt, std::round(0.005 / dt), 1e-5 * 0.005 / dt);
+  // The reference's amplitude from its own probes.csv.
+  const auto reference = read_csv(dir / "out" / "reference" / "probes.csv");
+  double amplitude = 0;
+  for (const auto& row : reference) {
+    double d2 = 0;
+    for (const char* c : {"tip.pos_x", "tip.pos_y", "tip.pos_z"})
+      d2 += std::pow(std::stod(row.at(c)) - std::stod(reference.front().at(c)), 2);
+    amplitude = std::max(amplitude, std::sqrt(d2));
+  }
+  // Both errors are the same distance over d and over the amplitude: d = amplitude × ratio is
+  // one value for every row, the particles' bounding-box diagonal (below the 1.01 m of the box).
+  std::vector<double> diagonal;
+  for (const auto& row : rows) {
+    const double over_d = std::stod(row.at("probe_error"));
+    const double over_amplitude = std::stod(row.at("probe_error_amplitude"));
+    diagonal.push_back(over_amplitude * amplitude / over_d);
+    std::printf("%s: probe error / amplitude %.3g, amplitude %.3g m, implied d %.4g m\n",
+                row.at("run").c_str(), over_amplitude, amplitude, diagonal.back());
+  }
+  EXPECT_NEAR(diagonal[0], diagonal[1], 1e-5 * diagonal[1]);  // 6 digits per CSV value
+  EXPECT_GT(diagonal[0], 0.8);
+  EXPECT_LT(diagonal[0], 1.01);
+  const double verlet = std::stod(rows[0].at("probe_error_amplitude"));
+  const double coarse = std::stod(rows[1].at("probe_error_amplitude"));
+  EXPECT_LT(verlet, 0.05);
+  // two backward Euler steps over the first 10 ms of the fall from rest: first order, far off
+  EXPECT_GT(coarse, 0.05);
+  const std::string md = test::slurp(dir / "out" / "results.md");
+  EXPECT_NE(md.find("| velocity_verlet | "), std::string::npos) << md;
+  EXPECT_NE(md.find("| coarse | none within the target |"), std::string::npos) << md;
+  EXPECT_NE(outcome.output.find("speed-up over velocity_verlet"), std::string::npos);
 }
 
 // A study whose reference is a CSV of probe values (here the probes.csv of a VERNER_8_5_6 run):

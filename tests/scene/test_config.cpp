@@ -80,6 +80,44 @@ TEST(Config, DeeplyNestedYamlIsNamed) {
   EXPECT_NE(e.find("levels deep"), std::string::npos) << e;
 }
 
+// petsc_newton's solver keys: defaults, choices read into their enums, bad values named.
+TEST(Config, NewtonSolverKeys) {
+  const Config d = parse_config(kMinimal, "scene.yaml", {"integrator.type=petsc_newton"});
+  using P = IntegratorSettings::Preconditioner;
+  using K = IntegratorSettings::Krylov;
+  EXPECT_EQ(d.integrator.preconditioner, P::automatic);
+  EXPECT_EQ(d.integrator.krylov, K::automatic);
+  EXPECT_TRUE(d.integrator.reuse_factor);
+  EXPECT_DOUBLE_EQ(d.integrator.refresh_contraction, 0.25);
+  EXPECT_EQ(d.integrator.refresh_iterations, 6);
+  EXPECT_EQ(d.integrator.refresh_krylov, 40);
+  const Config c = parse_config(
+      kMinimal, "scene.yaml",
+      {"integrator.type=petsc_newton", "integrator.scheme=sdirk4",
+       "integrator.preconditioner=gamg", "integrator.krylov=gmres", "integrator.reuse_factor=false",
+       "integrator.refresh_contraction=0.5", "integrator.refresh_iterations=3",
+       "integrator.refresh_krylov=100"});
+  EXPECT_EQ(c.integrator.scheme, "sdirk4");
+  EXPECT_EQ(c.integrator.preconditioner, P::gamg);
+  EXPECT_EQ(c.integrator.krylov, K::gmres);
+  EXPECT_FALSE(c.integrator.reuse_factor);
+  EXPECT_DOUBLE_EQ(c.integrator.refresh_contraction, 0.5);
+  EXPECT_EQ(c.integrator.refresh_iterations, 3);
+  EXPECT_EQ(c.integrator.refresh_krylov, 100);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"integrator.preconditioner=ilu", "integrator.preconditioner"},
+      {"integrator.krylov=bicg", "integrator.krylov"},
+      {"integrator.refresh_contraction=1", "integrator.refresh_contraction: must be in (0, 1)"},
+      {"integrator.refresh_iterations=2.5", "integrator.refresh_iterations: must be a whole"},
+      {"integrator.scheme=sdirk5", "integrator.scheme"}};
+  for (const auto& [override, message] : bad) {
+    const std::string e = error_of(kMinimal, {"integrator.type=petsc_newton", override});
+    EXPECT_NE(e.find("scene.yaml: " + message), std::string::npos) << override << ": " << e;
+  }
+  const std::string other = error_of(kMinimal, {"integrator.preconditioner=scalar"});
+  EXPECT_NE(other.find("is an option of petsc_newton"), std::string::npos) << other;
+}
+
 TEST(Config, ConstraintNeedsFixOrVelocity) {
   const std::string e = error_of(
       std::string(kMinimal) + "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}}\n");

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Cost of one implicit step against the scene's size: bench_implicit_step on the glass cantilever
+# at about 1e3, 1e4 and 1e5 particles (one process each, so each peak memory is its own), with
+# the default preconditioner (auto) and with `scalar` at every size, backward Euler at 300× the
+# explicit estimate. Prints one table: particles, preconditioner, seconds of the first step (it
+# factorizes) and of a later one, µs per particle of a later step and its ratio to the smallest
+# scene's, Newton and Krylov iterations, peak memory.
+#   bench/run_implicit_bench.sh [BUILD_DIR] [SIZES...]     (default: build 1000 10000 100000)
+set -euo pipefail
+build=${1:-build}
+shift || true
+sizes=("$@")
+((${#sizes[@]})) || sizes=(1000 10000 100000)
+printf '%-10s %-15s %12s %10s %12s %8s %8s %8s %8s\n' particles preconditioner first_step_s step_s \
+  us_per_particle ratio newton krylov peak_gb
+for preconditioner in auto scalar; do
+  base=""
+  for n in "${sizes[@]}"; do
+    out=$("$build/bench_implicit_step" "$n" 1 300 backward_euler "$preconditioner")
+    get() { awk -v k="$1" '$1 == k {print $2}' <<<"$out"; }
+    per=$(get step_us_per_particle)
+    used=$(get preconditioner_chosen)
+    used=${used:-$preconditioner}
+    [[ -n $base ]] || base=$per
+    printf '%-10s %-15s %12s %10s %12s %8.2f %8s %8s %8s\n' "$(get particles)" "$used" \
+      "$(get first_step_seconds)" "$(get step_seconds)" "$per" "$(echo "$per / $base" | bc -l)" \
+      "$(get newton_iterations)" "$(get krylov_iterations)" "$(get peak_memory_gb)"
+  done
+done
