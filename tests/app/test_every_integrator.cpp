@@ -40,7 +40,8 @@ TEST_P(EveryIntegrator, GlassWallBreaksThroughTheSharedPostStep) {
   if (std::string(GetParam().label) == "petsc_newton") {
     const std::string text = test::slurp(dir / "summary.json");
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(text, m, std::regex(R"("refreshes_bonds_broken"\s*:\s*([0-9]+))")))
+    ASSERT_TRUE(
+        std::regex_search(text, m, std::regex(R"("refreshes_bonds_broken"\s*:\s*([0-9]+))")))
         << text;
     std::printf("petsc_newton: %s refreshes after bonds broke\n", m[1].str().c_str());
     EXPECT_GT(std::stol(m[1].str()), 0);

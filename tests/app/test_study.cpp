@@ -92,15 +92,17 @@ TEST(Study, ErrorFallsWithDtAtEachIntegratorsOrder) {
 TEST(Study, AutoStepAmplitudeErrorAndTargetTable) {
   const fs::path dir = test::scratch_dir("study_target");
   const std::string scene = std::string(FISSURE_SOURCE_DIR) + "/configs/compare/bar_swing.yaml";
-  test::write_file(dir / "target.yaml",
-                   "scene: " + scene +
-                       "\nset: [\"time.end=0.01\", \"bodies[0].resolution=0.1\"]\nevery: 0.005\n"
-                       "reference: {integrator: {type: velocity_verlet}, dt: 2.5e-6}\n"
-                       "target: {probe_error: 0.05, baseline: velocity_verlet}\nruns:\n"
-                       "  - {name: velocity_verlet, integrator: {type: velocity_verlet}, dt: [auto]}\n"
-                       "  - {name: coarse, integrator: {type: petsc_newton, scheme: "
-                       "backward_euler}, dt: [0.005]}\n"
-                       "output: {dir: " + (dir / "out").string() + "}\n");
+  test::write_file(
+      dir / "target.yaml",
+      "scene: " + scene +
+          "\nset: [\"time.end=0.01\", \"bodies[0].resolution=0.1\"]\nevery: 0.005\n"
+          "reference: {integrator: {type: velocity_verlet}, dt: 2.5e-6}\n"
+          "target: {probe_error: 0.05, baseline: velocity_verlet}\nruns:\n"
+          "  - {name: velocity_verlet, integrator: {type: velocity_verlet}, dt: [auto]}\n"
+          "  - {name: coarse, integrator: {type: petsc_newton, scheme: "
+          "backward_euler}, dt: [0.005]}\n"
+          "output: {dir: " +
+          (dir / "out").string() + "}\n");
   const auto outcome = test::run_fissure("study " + (dir / "target.yaml").string());
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
   const auto rows = read_csv(dir / "out" / "results.csv");

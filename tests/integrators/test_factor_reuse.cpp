@@ -89,9 +89,9 @@ TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
 // Every factorization after the first is one refresh, counted under one reason.
 double refreshes(const Integrator& integrator) {
   double sum = 0;
-  for (const char* reason : {"refreshes_step_size", "refreshes_bonds_broken",
-                             "refreshes_convergence", "refreshes_fallback",
-                             "refreshes_every_iteration"})
+  for (const char* reason :
+       {"refreshes_step_size", "refreshes_bonds_broken", "refreshes_convergence",
+        "refreshes_fallback", "refreshes_every_iteration"})
     sum += statistic(integrator, reason);
   return sum;
 }
@@ -183,11 +183,11 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
     P preconditioner;
     K krylov;
   };
-  for (const Variant& c : {Variant{"tangent+cg", P::tangent, K::cg},
-                           Variant{"majoriser+cg", P::majoriser, K::automatic},
-                           Variant{"scalar+cg", P::scalar, K::automatic},
-                           Variant{"scalar+gmres", P::scalar, K::gmres},
-                           Variant{"gamg+cg", P::gamg, K::automatic}}) {
+  for (const Variant& c :
+       {Variant{"tangent+cg", P::tangent, K::cg},
+        Variant{"majoriser+cg", P::majoriser, K::automatic},
+        Variant{"scalar+cg", P::scalar, K::automatic}, Variant{"scalar+gmres", P::scalar, K::gmres},
+        Variant{"gamg+cg", P::gamg, K::automatic}}) {
     IntegratorSettings s = newton("newmark");
     s.preconditioner = c.preconditioner;
     s.krylov = c.krylov;

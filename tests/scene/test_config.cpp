@@ -91,12 +91,12 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_DOUBLE_EQ(d.integrator.refresh_contraction, 0.25);
   EXPECT_EQ(d.integrator.refresh_iterations, 6);
   EXPECT_EQ(d.integrator.refresh_krylov, 40);
-  const Config c = parse_config(
-      kMinimal, "scene.yaml",
-      {"integrator.type=petsc_newton", "integrator.scheme=sdirk4",
-       "integrator.preconditioner=gamg", "integrator.krylov=gmres", "integrator.reuse_factor=false",
-       "integrator.refresh_contraction=0.5", "integrator.refresh_iterations=3",
-       "integrator.refresh_krylov=100"});
+  const Config c =
+      parse_config(kMinimal, "scene.yaml",
+                   {"integrator.type=petsc_newton", "integrator.scheme=sdirk4",
+                    "integrator.preconditioner=gamg", "integrator.krylov=gmres",
+                    "integrator.reuse_factor=false", "integrator.refresh_contraction=0.5",
+                    "integrator.refresh_iterations=3", "integrator.refresh_krylov=100"});
   EXPECT_EQ(c.integrator.scheme, "sdirk4");
   EXPECT_EQ(c.integrator.preconditioner, P::gamg);
   EXPECT_EQ(c.integrator.krylov, K::gmres);
