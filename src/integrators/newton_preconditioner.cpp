@@ -168,7 +168,6 @@ void NewtonPreconditioner::refresh(const double* z) {
   if (code != 0 || reason != PC_NOERROR)
     throw RunError(fmt::format("the {} preconditioner's {}×{} matrix is not positive definite",
                                preconditioner_name(kind_), matrix_.rows, matrix_.rows));
-  set_up_ = true;
   ++factorizations;
 }
 
@@ -201,7 +200,7 @@ void NewtonPreconditioner::apply(Vec r, Vec x) {
 void NewtonPreconditioner::view(PetscViewer viewer) const {
   PetscViewerASCIIPrintf(viewer, "Fissure preconditioner: %s (refreshed %ld times)\n",
                          preconditioner_name(kind_), factorizations);
-  if (set_up_) PCView(pc_, viewer);
+  if (factorizations > 0) PCView(pc_, viewer);
 }
 
 }  // namespace fissure

@@ -34,6 +34,9 @@ class NewtonPreconditioner {
   void bonds_changed() { scalar_assembled_ = false; }
   void view(PetscViewer viewer) const;
   Kind kind() const { return kind_; }
+  // Whether the factor depends on the point it is made at: the scalar one depends on A and the
+  // bonds only, so a refresh for slow convergence would rebuild the same factor.
+  bool follows_the_state() const { return kind_ != Kind::scalar; }
   long assemblies = 0, factorizations = 0, back_solves = 0;
 
  private:
@@ -49,7 +52,6 @@ class NewtonPreconditioner {
   Mat petsc_matrix_ = nullptr;
   PC pc_ = nullptr;
   Vec component_ = nullptr, component_solution_ = nullptr;  // scalar: one component, N
-  bool set_up_ = false;
 };
 
 // The preconditioner `auto` picks for a scene of these families (docs/integrators.md).

@@ -45,7 +45,8 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
 
 void NewtonSystem::evaluate(const double* z, long& passes) {
   const std::size_t n = mass_.size();
-  if (cached_ && std::memcmp(z, point_.data(), n * sizeof(double)) == 0) {
+  const std::size_t revision = dynamics_.model().revision();
+  if (cached_ && revision == revision_ && std::memcmp(z, point_.data(), n * sizeof(double)) == 0) {
     ++cache_hits;
     return;
   }
@@ -53,6 +54,7 @@ void NewtonSystem::evaluate(const double* z, long& passes) {
   dynamics_.count_force_evaluation();
   point_.assign(z, z + n);
   cached_ = true;
+  revision_ = revision;
   ++passes;
 }
 

@@ -37,9 +37,6 @@ class NewtonSystem {
   void linearize(const double* z);
   // out = (A M + K) v on free unknowns, A m v on held ones (their rows decoupled).
   void apply(const double* v, double* out);
-  // The model changed between steps (bonds broke, plastic flow): forget the kept evaluation.
-  void model_changed() { cached_ = false; }
-
   // What preconditioners need: the unknowns' masses, which are held, the current A.
   const std::vector<double>& mass() const { return mass_; }
   const std::vector<char>& fixed() const { return fixed_; }
@@ -58,7 +55,8 @@ class NewtonSystem {
        linearizations = 0;
 
  private:
-  // F_int(z) and Π(z) into force_ and elastic_, unless z is the point they were computed at.
+  // F_int(z) and Π(z) into force_ and elastic_, unless z is the point they were computed at
+  // and the model has not changed since (Model::revision).
   void evaluate(const double* z, long& passes);
 
   Dynamics& dynamics_;
@@ -71,6 +69,7 @@ class NewtonSystem {
   std::vector<double> point_;     // where force_ and elastic_ were computed
   double elastic_ = 0;
   bool cached_ = false;
+  std::size_t revision_ = 0;           // the model's, at point_
   std::vector<double> linearization_;  // where the Newton matrix is taken
   bool linearized_ = false;            // the model holds linearization_'s tangent
   std::string linearized_tangent_;

@@ -66,7 +66,7 @@ struct PetscNewton::Solver {
   bool reuse = true;
   double refresh_contraction = 0.25;
   int refresh_iterations = 6, refresh_krylov = 40;
-  long steps = 0, newton_iterations = 0, linear_solves = 0, krylov_iterations = 0;
+  long steps = 0, newton_iterations = 0, krylov_iterations = 0;
   long tangent_fallbacks = 0;     // auto: steps redone with the projected tangent
   long krylov_fallbacks = 0;      // cg met an indefinite matrix: the step redone with gmres
   long step_halvings = 0;         // failed steps redone as two halves
@@ -120,9 +120,7 @@ Solver::Refresh refresh_reason(Solver& s) {
   if (!s.reuse) return Solver::every_iteration;
   if (s.system.inertia() != s.factor_inertia) return Solver::step_size;
   if (s.system.tangent() != s.factor_tangent) return Solver::fallback;
-  // The scalar preconditioner depends on A and the bonds only: refreshing it for slow
-  // convergence would rebuild the same factor.
-  if (s.preconditioner->kind() == IntegratorSettings::Preconditioner::scalar) return Solver::none;
+  if (!s.preconditioner->follows_the_state()) return Solver::none;
   const std::size_t k = s.norms.size();
   if (k >= 2 && s.norms[k - 2] > 10 * s.floor &&
       s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2])
@@ -361,8 +359,6 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
     restored_.clear();
   }
   Solver& s = *solver_;
-  // Plastic flow in the post-step changed the model since the kept evaluation.
-  if (dynamics.model().plastic()) s.system.model_changed();
   // static: the load ramp counts increments, so a failed one is not split
   advance(dynamics, state, dt, s.scheme.is_static() ? 0 : settings_.max_step_halvings);
   return dt;
@@ -370,7 +366,6 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
 
 void PetscNewton::bonds_changed() {
   if (!solver_) return;
-  solver_->system.model_changed();
   solver_->preconditioner->bonds_changed();
   solver_->pending = Solver::bonds;
 }
@@ -431,7 +426,6 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     petsc_check(SNESGetIterationNumber(s.snes, &iterations), "SNESGetIterationNumber");
     petsc_check(SNESGetLinearSolveIterations(s.snes, &krylov), "SNESGetLinearSolveIterations");
     s.newton_iterations += iterations;
-    s.linear_solves += iterations;
     if (s.krylov) s.krylov_iterations += krylov;
     if (code != 0) {
       reason = SNES_DIVERGED_LINEAR_SOLVE;
@@ -514,7 +508,7 @@ Statistics PetscNewton::statistics() const {
   const NewtonSystem& y = s.system;
   const NewtonPreconditioner& p = *s.preconditioner;
   return {{"newton_iterations", double(s.newton_iterations)},
-          {"linear_solves", double(s.linear_solves)},
+          {"linear_solves", double(s.newton_iterations)},  // one per Newton iteration
           {"krylov_iterations", double(s.krylov_iterations)},
           {"line_search_cuts", double(s.line_search.cuts)},
           {"assemblies", double(p.assemblies)},

@@ -255,6 +255,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
     }
     plastic_dilatation_[i] = plastic_theta;  // θ^p_i = Σ_j c_ij e^p_ij V_j
   }
+  if (yielded > 0) mark_changed();
   return yielded;
 }
 
@@ -279,6 +280,7 @@ void LpsModel::restore_state(const NamedArrays& state) {
     take("model.plastic_extension", plastic_extension_);
     take("model.plastic_dilatation", plastic_dilatation_);
   }
+  mark_changed();
 }
 
 void LpsModel::break_bond(int i, std::size_t b) {
@@ -287,6 +289,7 @@ void LpsModel::break_bond(int i, std::size_t b) {
   bond_omega_[b] = 0;
   bond_weight_[b] = 0;
   bond_reverse_weight_[b] = 0;
+  mark_changed();
 }
 
 std::size_t LpsModel::bytes_per_bond() const {

@@ -2,6 +2,7 @@
 // The constitutive model: internal forces, energies and the stable explicit step, for positions
 // y. It knows nothing of time stepping.
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <memory>
@@ -98,6 +99,9 @@ class Model {
   // F_int(y) into f (as forces()) and the elastic energy Π(y) (as elastic_energy()) from one pass
   // over the bonds: an implicit step's residual and its line search's objective at one point.
   virtual double forces_and_energy(const double* y, double* f);
+  // Counts changes of the model's own state (a bond broken, plastic flow, a restore): what was
+  // computed from the model at another revision (an integrator's kept forces) is stale.
+  std::size_t revision() const { return revision_.load(std::memory_order_relaxed); }
   // Bytes stored per directed bond: the families (neighbour, |ξ|, reverse index) and the
   // model's own bond data.
   virtual std::size_t bytes_per_bond() const = 0;
@@ -109,8 +113,11 @@ class Model {
   const Families& families_;
   MaterialPoints materials_;
   std::vector<double> dilatation_;
+  // Every change of the state counts once; break_bond may run for many rows at a time.
+  void mark_changed() { revision_.fetch_add(1, std::memory_order_relaxed); }
 
  private:
+  std::atomic<std::size_t> revision_{0};
   std::vector<double> no_plastic_extension_;
 };
 

@@ -129,7 +129,10 @@ double PaperModel::stable_time_step() const {
   return gershgorin_time_step(particles_, families_, materials_, {b, omega_, c});
 }
 
-void PaperModel::break_bond(int, std::size_t b) { omega_[b] = 0; }
+void PaperModel::break_bond(int, std::size_t b) {
+  omega_[b] = 0;
+  mark_changed();
+}
 
 std::size_t PaperModel::bytes_per_bond() const {
   return 2 * sizeof(int) + 2 * sizeof(double);  // neighbour, |ξ|, reverse index, ω
