@@ -40,9 +40,12 @@ TEST(BarSwing, TipFallsThenRises) {
   // Euler–Bernoulli cantilever under its own weight, clamped at x = 0.03 (the fixed region) so
   // its free length is L = 0.97 m: static tip deflection qL⁴/(8EI), first period
   // 2π/1.875² √(ρAL⁴/EI). Suddenly loaded, the tip reaches twice the static deflection half a
-  // period later. 10% covers what beam theory leaves out at this coarse resolution (two tets
-  // through the thickness): shear deformation (h/L = 0.1, a few %), the large deflection (23% of
-  // L), and the peridynamic surface layer.
+  // period later. Measured 2.3% under beam theory's amplitude and at its half period to the
+  // probe spacing. 5% on the amplitude covers what beam theory leaves out at this coarse
+  // resolution (two tets through the thickness): shear deformation (h/L = 0.1: about +1%), the
+  // large deflection (23% of L shortens the lever arm: a few % less), and the surface layer's
+  // stiffening (docs/model.md). The half period moves by half the stiffness error (2.5%) plus
+  // half the probe spacing (0.9%): 3.5%. A Young's modulus 10% off fails both.
   const double E = 9 * 5e6 * 5e6 / (3 * 5e6 + 5e6), I = std::pow(0.1, 4) / 12, A = 0.01, L = 0.97;
   const double q = 1000 * 9.81 * A;
   const double w_static = q * std::pow(L, 4) / (8 * E * I);
@@ -51,8 +54,8 @@ TEST(BarSwing, TipFallsThenRises) {
               time[lowest], -2 * w_static, period / 2);
   EXPECT_GT(lowest, 0);
   EXPECT_LT(lowest, static_cast<long>(dz.size()) - 1);
-  EXPECT_NEAR(dz[lowest] / (-2 * w_static), 1.0, 0.10);
-  EXPECT_NEAR(time[lowest] / (period / 2), 1.0, 0.10);
+  EXPECT_NEAR(dz[lowest] / (-2 * w_static), 1.0, 0.05);
+  EXPECT_NEAR(time[lowest] / (period / 2), 1.0, 0.035);
   EXPECT_GT(dz.back(), dz[lowest] + 0.05);  // it rises again
 }
 

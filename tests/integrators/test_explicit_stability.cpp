@@ -17,8 +17,12 @@ double total_energy(Model& model, const Scene& scene, const State& s) {
 }
 
 // A free vibration of a 0.6 × 0.05 × 0.05 bar (first longitudinal mode, v_x ∝ cos πx/L) under
-// velocity Verlet at half the stable estimate keeps |ΔE|/E below 1e-3 over 10,000 steps. Verlet's
-// energy error is bounded and O((ω Δt)²) for the excited low modes, so 1e-3 has a wide margin.
+// velocity Verlet at half the stable estimate over 10,000 steps. Verlet conserves a shadow
+// energy; for a mode of frequency ω the true energy oscillates about it with relative amplitude
+// (ω Δt)²/4 and does not drift. ω = π c / L with the bar speed c = √(E/ρ); the bound doubles
+// (ω Δt)²/4 for the thin bar's surface stiffening (E_eff/E ≈ 1.1, docs/model.md) and the
+// higher modes the cosine profile excites. Symplectic Euler's O(ω Δt) error (about 9e-3 here)
+// or a drifting integrator fails it.
 TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
   const std::string yaml =
       "time: {end: 1.0}\nbodies:\n  - geometry: {box: {min: [0, 0, 0], max: [0.6, 0.05, 0.05]}}\n"
@@ -40,8 +44,12 @@ TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
     if (s % 10 == 0)
       worst = std::max(worst, std::abs(total_energy(*model, scene, state) - e0) / e0);
   }
-  std::printf("velocity Verlet, 10000 steps at 0.5x estimate: max |dE|/E = %.2e\n", worst);
-  EXPECT_LT(worst, 1e-3);
+  const double young = 9 * 2.0e6 * 1.0e6 / (3 * 2.0e6 + 1.0e6);
+  const double omega = M_PI * std::sqrt(young / 1000) / 0.6;
+  const double bound = 2 * std::pow(omega * dt, 2) / 4;
+  std::printf("velocity Verlet, 10000 steps at 0.5x estimate: max |dE|/E = %.2e (bound %.2e)\n",
+              worst, bound);
+  EXPECT_LT(worst, bound);
 }
 
 // Runs a small randomly perturbed block at `factor` × the estimate; true if the energy grows

@@ -94,10 +94,15 @@ TEST_F(HostileInput, TetgenNanCoordinate) {
 }
 
 TEST_F(HostileInput, TetgenFromMemoryMatchesFile) {
-  const TetMesh mesh = mesh_detail::parse_tetgen("4 3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n",
-                                                 "1 4\n1 1 3 2 4\n", "m.node", "m.ele");
+  const std::string node = "4 3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n";
+  const std::string ele = "1 4\n1 1 3 2 4\n";
+  const TetMesh mesh = mesh_detail::parse_tetgen(node, ele, "m.node", "m.ele");
   ASSERT_EQ(mesh.tet_count(), 1);
   EXPECT_NEAR(tet_volume(mesh, 0), 1.0 / 6.0, 1e-15);  // the inverted tet is flipped
+  write("m.ele", ele);
+  const TetMesh from_file = read_tetgen(write("m.node", node));
+  EXPECT_EQ(from_file.vertices, mesh.vertices);
+  EXPECT_EQ(from_file.tets, mesh.tets);
 }
 
 // Found by fuzz_ply: a `property` line without type and name read past its tokens.

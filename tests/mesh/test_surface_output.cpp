@@ -21,6 +21,15 @@ std::string read(const fs::path& path) {
   return text.str();
 }
 
+// The effects `fissure info` prints on its line "effects: a, b, ...".
+std::string effects_of(const std::string& info) {
+  const std::string key = "effects: ";
+  const std::size_t begin = info.find(key);
+  if (begin == std::string::npos) return "";
+  const std::size_t end = info.find('\n', begin);
+  return info.substr(begin + key.size(), end - begin - key.size());
+}
+
 // A small fracturing box pulled apart at both ends, three frames.
 std::string scene_yaml(const std::string& output) {
   return "name: pulled\n"
@@ -40,8 +49,9 @@ std::string scene_yaml(const std::string& output) {
 TEST(SurfaceOutput, WritesSurfaceAndTetFramesWhenAskedAndNothingOtherwise) {
   const fs::path dir = scratch_dir("surface_output");
   write_file(dir / "scene.yaml", scene_yaml(", surface: true, tets: true"));
+  // `fissure info` lists the surface and tet outputs among the scene's effects.
   const Outcome info = run_fissure("info " + (dir / "scene.yaml").string());
-  EXPECT_NE(info.output.find("surface"), std::string::npos) << info.output;
+  EXPECT_EQ(effects_of(info.output), "elasticity, fracture, surface, tets") << info.output;
   const Outcome run =
       run_fissure("run " + (dir / "scene.yaml").string() + " --out " + (dir / "out").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -72,6 +82,8 @@ TEST(SurfaceOutput, WritesSurfaceAndTetFramesWhenAskedAndNothingOtherwise) {
     EXPECT_NE(vtu.find(array), std::string::npos) << array;
   // A run without surfaces writes none and removes the earlier run's.
   write_file(dir / "scene.yaml", scene_yaml(""));
+  EXPECT_EQ(effects_of(run_fissure("info " + (dir / "scene.yaml").string()).output),
+            "elasticity, fracture");
   const Outcome plain =
       run_fissure("run " + (dir / "scene.yaml").string() + " --out " + (dir / "out").string());
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
