@@ -74,7 +74,11 @@ TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
   const double measured = (probes[1] - probes[0]) / (arrival[1] - arrival[0]);
   std::printf("wave speed %.2f m/s, sqrt(E/rho) = %.2f m/s, ratio %.4f\n", measured, c,
               measured / c);
-  EXPECT_NEAR(measured / c, 1.0, 0.05);
+  // The bar is 2.8 horizons across, where the surface effect stiffens it in uniaxial stress:
+  // E_eff < 1.10 E (test SurfaceEffect; 1.096 in docs/model.md), never softer. So the speed lies
+  // between √(E/ρ) and √(1.10 E/ρ) = 1.049 c.
+  EXPECT_GT(measured / c, 1.0);
+  EXPECT_LT(measured / c, std::sqrt(1.10));
 }
 
 }  // namespace

@@ -85,9 +85,10 @@ TEST(Plasticity, DissipationIsNonNegativeOnEveryStepOfACycle) {
   EXPECT_GT(dissipated, 0.0);
 }
 
-// After one return map the deviatoric bond force sits on the yield surface, even for a strain
-// increment of 100 yield strains taken at once: no sign flips, no overshoot. The per-bond
-// projection leaves a small error through θ^p (notes §6: within 0.4%); 2% bounds it.
+// A strain increment of 100 yield strains taken at once flips no plastic extension's sign, and a
+// second return map at the same positions moves e^p by less than 0.1% of the largest e^p
+// (docs/model.md, Plasticity 2; measured 0.09%). Where the return puts each bond relative to the
+// yield surface is test YieldSurface.*: off by μΔθ^p/σ_y, which is what the second map corrects.
 TEST(Plasticity, LargeIncrementLandsOnTheYieldSurfaceWithoutSignFlips) {
   const Scene scene = plastic_block();
   auto model = make_model(scene);
@@ -106,7 +107,7 @@ TEST(Plasticity, LargeIncrementLandsOnTheYieldSurfaceWithoutSignFlips) {
     }
   }
   std::printf("second return map: largest change %.3e of largest e^p %.3e\n", change, size);
-  EXPECT_LT(change, 0.02 * size);
+  EXPECT_LT(change, 1e-3 * size);
   std::vector<double> f(y.size());
   model->forces(y.data(), f.data());
   for (double v : f) ASSERT_TRUE(std::isfinite(v));

@@ -32,26 +32,16 @@ double strain(const Particles& p, const std::vector<double>& y, const std::vecto
   return (n * sxu - sx * su) / (n * sxx - sx * sx);
 }
 
-// The Poisson ratio of the discrete bar itself under homogeneous deformation: with
-// Π(a, b) the elastic energy of y = diag(1 + a, 1 + b, 1 + b) x, a quadratic form
-// ½(A a² + 2B ab + D b²), the lateral strain that minimises it is b = −(B/D) a, so ν_h = B/D.
-// No solver is involved; ν_h carries the discretisation's surface effect.
-double homogeneous_poisson_ratio(Model& model, const Particles& p) {
-  auto energy = [&](double a, double b) {
-    const double F[9] = {1 + a, 0, 0, 0, 1 + b, 0, 0, 0, 1 + b};
-    const auto y = test::deform(p, F);
-    return model.elastic_energy(y.data());
-  };
-  const double e = 1e-5, a_only = energy(e, 0), b_only = energy(0, e);
-  return 0.5 * (energy(e, e) - a_only - b_only) / b_only;
-}
-
-// ν after the surface effect docs/model.md measures for a bar 2.8 horizons wide (test
-// SurfaceEffect): E_eff = 1.096 E in uniaxial stress. κ is exact (calibrated dilatation), so the
-// excess is deviatoric: solve E_eff = 9κμ'/(3κ + μ') for μ' and return ν(κ, μ').
+// ν after the documented surface effect of a bar 2.8 horizons wide (docs/model.md, "Remaining
+// surface effect": E_eff = 1.096 E in homogeneous uniaxial stress at w/δ = 2.76 with κ = μ,
+// calibrated weights; test SurfaceEffect bounds it below 1.10). κ is exact on every particle
+// (test EffectiveModuli) and the excess comes from the per-mode deviatoric energy of cut families,
+// a property of the bond geometry, so it scales μ by a factor that does not depend on κ/μ:
+// 1.096 E(κ, κ) = E(κ, μ'κ) gives μ' = 1.132, and ν' = ν(κ, μ' μ) (Eq: E = 9κμ/(3κ + μ)).
 double surface_stiffened_poisson_ratio(double bulk, double shear) {
-  const double e = 1.096 * test::youngs_modulus(bulk, shear);
-  return test::poisson_ratio(bulk, 3 * bulk * e / (9 * bulk - e));
+  const double excess = 1.096 * test::youngs_modulus(1, 1);  // E_eff / κ at κ = μ = 1
+  const double factor = 3 * excess / (9 - excess);           // μ'/μ from 9μ'/(3 + μ') = excess
+  return test::poisson_ratio(bulk, factor * shear);
 }
 
 class PoissonRatio : public ::testing::TestWithParam<Material> {};
@@ -79,7 +69,6 @@ TEST_P(PoissonRatio, LateralContractionMatchesNu) {
   // held ends move by velocity × 1 s
   const State s = test::static_equilibrium(dynamics, test::at_rest(p));
 
-  const double nu_h = homogeneous_poisson_ratio(*model, p);
   std::vector<int> gauge;
   for (int i = 0; i < p.count(); ++i)
     if (std::abs(p.reference[3 * i] - 0.5) <= 0.15) gauge.push_back(i);
@@ -90,19 +79,20 @@ TEST_P(PoissonRatio, LateralContractionMatchesNu) {
   const double surface = surface_stiffened_poisson_ratio(m.bulk, m.shear);
   std::printf(
       "kappa %.3g Pa, mu %.3g Pa: %d particles (%zu in the gauge), axial strain %.4e, "
-      "lateral %.4e\n  nu measured %.4f, theory (3k-2mu)/(2(3k+mu)) %.4f (difference "
-      "%+.4f), homogeneous %.4f, surface-stiffened %.4f\n",
-      m.bulk, m.shear, p.count(), gauge.size(), axial, lateral, nu, expected, nu - expected, nu_h,
-      surface);
-  // At 2.8 horizons across, ν is low by the documented surface effect: a 9.6% stiffer
-  // deviatoric response lowers ν by 0.039, 0.019 and 0.004 for the three materials
-  // (`surface`), and the homogeneous ν_h of the same particles agrees with that. The stretch
-  // must reproduce ν_h up to the non-homogeneous relaxation near the free surfaces and grips
-  // that a homogeneous field lacks (measured 0.008 to 0.010; bound 0.015), and so deviate
-  // from theory by no more than the surface effect plus that bound. A wrong κ or μ, sign or
-  // strain measure moves ν by far more at ν = 0.10 and 0.30.
-  EXPECT_NEAR(nu, nu_h, 0.015);
-  EXPECT_LE(std::abs(nu - expected), std::abs(surface - expected) + 0.015);
+      "lateral %.4e\n  nu measured %.4f, theory (3k-2mu)/(2(3k+mu)) %.4f (difference %+.4f), "
+      "after the documented surface effect %.4f (difference %+.4f)\n",
+      m.bulk, m.shear, p.count(), gauge.size(), axial, lateral, nu, expected, nu - expected,
+      surface, surface - expected);
+  // Sign: a family cut by a free surface stiffens the deviatoric response and leaves κ exact,
+  // so μ_eff > μ and ν = (3κ − 2μ)/(2(3κ + μ)) falls (dν/dμ < 0): ν may only lie below theory.
+  EXPECT_LT(nu, expected);
+  // Size: the documented deviatoric excess lowers ν to `surface` (by 0.038, 0.022, 0.005 for the
+  // three materials). A homogeneous field is not the bar's equilibrium: the grips hold the
+  // ends' contraction and the stiff surface layer relaxes the core, which lowers ν a further
+  // 0.006 to 0.009 at this resolution (docs/verification.md b); 0.012 bounds that part. Without
+  // the dilatation calibration (plain weights) θ picks up shear near the surfaces and ν comes
+  // out above theory (0.321 and 0.518 for the last two materials): it fails the sign.
+  EXPECT_GT(nu, surface - 0.012);
 }
 
 // κ = 2.0 MPa; μ = 2.2, 0.92, 0.15 MPa: ν = 0.10, 0.30, 0.46 (configs/beam_stretch.yaml).
