@@ -77,7 +77,11 @@ inline CaseRun run_case(const std::string& name, const std::string& yaml,
 
 // The speed one particle would reach with all the energy the run received, E(0) + the work of
 // every load, given to the lightest particle: no stable run can exceed it (Π ≥ 0 and losses ≥ 0
-// up to the ledger's balance, which each case bounds separately).
+// up to the ledger's balance, which each case bounds separately). It is the one bound every case
+// shares, from shattering (where a few light particles do carry most of the energy) to the
+// sagging bar (where the energy is spread over every particle and the measured largest speed
+// is 26-50x below it); it catches a blow-up, and each case's balance bound, not this one, is
+// the tight check on the energy.
 // The particle masses come from the case's config file (no case overrides what sets them).
 inline double speed_bound(const CaseRun& run) {
   const Scene scene = build_scene(load_config(run.config.string()));
