@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 
@@ -15,6 +16,7 @@
 #include "render/render_settings.hpp"
 #include "scene/config.hpp"
 #include "study/study.hpp"
+#include "study/study_config.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -38,8 +40,9 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
 
   auto* render = app.add_subcommand("render", "turn a run's frames into PNG pictures and a GIF");
-  std::string field;
-  render->add_option("out_dir", out_dir, "the run's output folder")->required();
+  std::string field, run_dir;
+  render->add_option("run_dir", run_dir, "the run's output folder")->required();
+  render->add_option("--out", out_dir, "folder for the pictures (default: RUN_DIR/render)");
   render->add_option("--config", config_path, "scene file whose render: block applies");
   render->add_option("--field", field, "colour by damage, velocity, displacement or dilatation");
   render->add_option("--set", overrides, "override a config key, e.g. render.every=5")
@@ -48,6 +51,14 @@ int main(int argc, char** argv) {
   auto* study = app.add_subcommand(
       "study", "run a work-precision study: error against wall time per integrator");
   study->add_option("study_file", config_path, "study file (YAML, docs/studies.md)")->required();
+  study->add_option("--out", out_dir, "output folder (overrides output.dir)");
+  study->add_option("--set", overrides, "override a study file key: key.path=value (repeatable)")
+      ->allow_extra_args(false);
+
+  // Past a file-size limit (ulimit -f) a write then fails with EFBIG, which the run reports
+  // (file, reason, exit code 3), instead of SIGXFSZ killing it without a word.
+  if (std::signal(SIGXFSZ, SIG_IGN) == SIG_ERR)
+    fmt::print(stderr, "warning: cannot ignore SIGXFSZ: a file-size limit would kill the run\n");
 
   try {
     app.parse(argc, argv);
@@ -59,14 +70,17 @@ int main(int argc, char** argv) {
   try {
     if (*render) {
       if (!field.empty()) overrides.push_back("render.field=" + field);
-      const auto r = fissure::render_run(
-          out_dir, fissure::load_render_settings(config_path, overrides), isatty(fileno(stderr)));
+      const auto r =
+          fissure::render_run(run_dir, fissure::load_render_settings(config_path, overrides),
+                              out_dir, isatty(fileno(stderr)));
       fmt::print("rendered {} frames to {} in {:.1f} s{}\n", r.frames, r.folder, r.seconds,
                  r.animation.empty() ? "" : ", animation " + r.animation);
       return 0;
     }
     if (*study) {
-      const auto s = fissure::run_study(config_path, isatty(fileno(stderr)));
+      fissure::StudyConfig study_config = fissure::load_study(config_path, overrides);
+      if (!out_dir.empty()) study_config.output_dir = out_dir;
+      const auto s = fissure::run_study(study_config, isatty(fileno(stderr)));
       fmt::print("study: {} runs ({} refused or failed); results.csv, results.md{} in {}\n", s.runs,
                  s.failed, s.plotted ? ", work_precision.png/.svg" : "", s.folder);
       return 0;

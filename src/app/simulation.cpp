@@ -128,9 +128,11 @@ void clear_previous_output(const std::string& dir) {
 class Simulation {
  public:
   Simulation(const Config& config, const RunOptions& options);
+  // Steps to time.end; output that cannot be written stops the run (stop_writing).
   RunSummary run();
 
  private:
+  RunSummary run_steps();
   void write_frame();
   void sample_energy();
   // Adds the step's work and losses to the ledger; `kinetic` is K at the end of the step.
@@ -142,6 +144,9 @@ class Simulation {
   // Writes a last probes.csv row (unless the state is non-finite) and summary.json with `status`
   // and `message`, then throws RunError(message).
   [[noreturn]] void stop(const std::string& status, const std::string& message);
+  // Output that cannot be written: summary.json (where it still can be written) records status
+  // failed, and the RunError names the file, the reason and the checkpoint to go on from.
+  [[noreturn]] void stop_writing(const OutputError& error);
   void finish_summary();
   // Writes output.dir/checkpoint.bin: everything the run needs to go on from this step.
   void write_checkpoint();
@@ -173,6 +178,7 @@ class Simulation {
   std::vector<double> previous_position_;  // y at the start of the step, for the load work
   // Output schedule: the next probe row, frame and checkpoint are due at these times.
   double next_probe_ = 0, next_frame_ = 0, next_checkpoint_ = 0, last_frame_time_ = 0;
+  double last_checkpoint_time_ = -1;  // −1: no checkpoint written (or resumed from) yet
   std::vector<double> frame_times_;
 };
 
@@ -244,9 +250,12 @@ void Simulation::write_checkpoint() {
   w.add("run.schedule",
         std::vector<double>{next_probe_, next_frame_, next_checkpoint_, last_frame_time_,
                             last_sample_time_, summary_.max_speed});
-  w.add(
-      "run.probes_bytes",
-      std::vector<double>{double(std::filesystem::file_size(config_.output.dir + "/probes.csv"))});
+  const std::string probes = config_.output.dir + "/probes.csv";
+  std::error_code error;
+  const auto probes_bytes = std::filesystem::file_size(probes, error);
+  if (error)
+    throw OutputError(probes, "cannot read its size for the checkpoint: " + error.message());
+  w.add("run.probes_bytes", std::vector<double>{double(probes_bytes)});
   w.add("run.ledger", ledger_.numbers());
   w.add("state.position", state_.position);
   w.add("state.velocity", state_.velocity);
@@ -255,6 +264,7 @@ void Simulation::write_checkpoint() {
        {post_step_->saved_state(), dynamics_->saved_state(), integrator_->saved_state()})
     for (const auto& [name, values] : part) w.add(name, values);
   w.write(config_.output.dir + "/checkpoint.bin");
+  last_checkpoint_time_ = state_.time;
 }
 
 void Simulation::resume(const CheckpointReader& c) {
@@ -266,6 +276,7 @@ void Simulation::resume(const CheckpointReader& c) {
   state_.position = position;
   state_.velocity = c.doubles("state.velocity");
   state_.time = c.number("run.time");
+  last_checkpoint_time_ = state_.time;
   summary_.steps = static_cast<long>(c.number("run.steps"));
   frame_ = static_cast<int>(c.number("run.frames"));
   frame_times_ = c.doubles("run.frame_times");
@@ -408,6 +419,28 @@ void Simulation::stop(const std::string& status, const std::string& message) {
   throw RunError(message);
 }
 
+void Simulation::stop_writing(const OutputError& error) {
+  const std::string& dir = config_.output.dir;
+  const std::string resume =
+      last_checkpoint_time_ >= 0
+          ? fmt::format(
+                "the last checkpoint (t = {:.6g} s) in {} is intact: with room to write, go "
+                "on with `fissure run --resume {}`",
+                last_checkpoint_time_, dir, dir)
+          : "no checkpoint was written (output.checkpoint_every)";
+  std::string message =
+      fmt::format("{}; the run stopped at t = {:.6g} s; {}", error.what(), state_.time, resume);
+  summary_.status = "failed";
+  summary_.message = message;
+  finish_summary();
+  try {
+    write_summary(dir + "/summary.json", summary_);
+  } catch (const OutputError& also) {
+    message += fmt::format(" ({} could not record it either: {})", also.path(), also.reason());
+  }
+  throw RunError(message);
+}
+
 void Simulation::report_progress(Clock::time_point start, bool final) {
   const double elapsed = seconds_since(start);
   const double rate = summary_.steps / std::max(elapsed, 1e-9);
@@ -418,6 +451,14 @@ void Simulation::report_progress(Clock::time_point start, bool final) {
 }
 
 RunSummary Simulation::run() {
+  try {
+    return run_steps();
+  } catch (const OutputError& error) {
+    stop_writing(error);
+  }
+}
+
+RunSummary Simulation::run_steps() {
   const bool adaptive = integrator_->adaptive();
   const double dt = summary_.dt;
   const long steps = static_cast<long>(std::ceil(config_.time.end / dt - 1e-9));
@@ -440,7 +481,9 @@ RunSummary Simulation::run() {
       write_checkpoint();
     }
   };
-  output_due();
+  // A checkpoint is written last in its step's output_due(): a resumed run has had that step's
+  // output (with probe_every below dt the probe schedule stays due and would repeat its row).
+  if (!options_.resume) output_due();
   const auto start = Clock::now();
   auto last_report = start;
   double stepping_seconds = 0;

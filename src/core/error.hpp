@@ -32,4 +32,19 @@ class RunError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Output that cannot be written (disk full, file-size limit, folder removed): a RunError naming
+// the file and the system's reason.
+class OutputError : public RunError {
+ public:
+  OutputError(std::string path, std::string reason)
+      : RunError("cannot write " + path + ": " + reason),
+        path_(std::move(path)),
+        reason_(std::move(reason)) {}
+  const std::string& path() const { return path_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string path_, reason_;
+};
+
 }  // namespace fissure

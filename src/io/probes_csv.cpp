@@ -8,7 +8,8 @@ namespace fissure {
 
 ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
                      const std::vector<std::string>& extra_columns, bool append)
-    : particles_(particles) {
+    : particles_(particles),
+      file_(path, append ? OutputFile::Mode::append : OutputFile::Mode::truncate) {
   for (std::size_t p = 0; p < config.probes.size(); ++p) {
     std::vector<int> members;
     for (int i = 0; i < particles.count(); ++i)
@@ -18,21 +19,21 @@ ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Partic
                        fmt::format("probe '{}' contains no particle", config.probes[p].name));
     members_.push_back(std::move(members));
   }
-  out_.open(path, append ? std::ios::app : std::ios::trunc);
-  if (!out_) throw RunError("cannot write " + path);
   if (append) return;
-  out_ << "time,kinetic_energy,elastic_energy";
+  std::ostream& out = file_.stream();
+  out << "time,kinetic_energy,elastic_energy";
   for (const auto& probe : config.probes)
     for (const char* column : {"pos_x", "pos_y", "pos_z", "disp_x", "disp_y", "disp_z"})
-      out_ << ',' << probe.name << '.' << column;
-  for (const std::string& column : extra_columns) out_ << ',' << column;
-  out_ << '\n';
-  out_.flush();
+      out << ',' << probe.name << '.' << column;
+  for (const std::string& column : extra_columns) out << ',' << column;
+  out << '\n';
+  file_.flush();
 }
 
 void ProbesCsv::write_row(double time, double kinetic_energy, double elastic_energy,
                           const std::vector<double>& position, const std::vector<double>& extra) {
-  out_ << fmt::format("{:.9g},{:.9g},{:.9g}", time, kinetic_energy, elastic_energy);
+  std::ostream& out = file_.stream();
+  out << fmt::format("{:.9g},{:.9g},{:.9g}", time, kinetic_energy, elastic_energy);
   for (const auto& members : members_) {
     double pos[3] = {0, 0, 0}, disp[3] = {0, 0, 0};
     for (int i : members)
@@ -41,12 +42,12 @@ void ProbesCsv::write_row(double time, double kinetic_energy, double elastic_ene
         disp[k] += position[3 * i + k] - particles_.reference[3 * i + k];
       }
     const double inv = 1.0 / static_cast<double>(members.size());
-    for (double v : pos) out_ << fmt::format(",{:.9g}", v * inv);
-    for (double v : disp) out_ << fmt::format(",{:.9g}", v * inv);
+    for (double v : pos) out << fmt::format(",{:.9g}", v * inv);
+    for (double v : disp) out << fmt::format(",{:.9g}", v * inv);
   }
-  for (double v : extra) out_ << fmt::format(",{:.9g}", v);
-  out_ << '\n';
-  out_.flush();
+  for (double v : extra) out << fmt::format(",{:.9g}", v);
+  out << '\n';
+  file_.flush();
 }
 
 }  // namespace fissure

@@ -3,10 +3,10 @@
 // elastic_energy, then per probe NAME.pos_{x,y,z} and NAME.disp_{x,y,z} (means over the
 // particles whose reference position lies in the probe's region), then the extra columns (the
 // energy ledger's).
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "io/output_file.hpp"
 #include "scene/config.hpp"
 #include "scene/particles.hpp"
 
@@ -15,15 +15,16 @@ namespace fissure {
 class ProbesCsv {
  public:
   // Throws InputError if a probe region holds no particle. With `append` the rows go after
-  // those already in the file (a resumed run) and no header is written.
+  // those already in the file (a resumed run) and no header is written. Each row reaches the
+  // file as it is written; OutputError when the file refuses it.
   ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
             const std::vector<std::string>& extra_columns, bool append = false);
   void write_row(double time, double kinetic_energy, double elastic_energy,
                  const std::vector<double>& position, const std::vector<double>& extra);
 
  private:
-  std::ofstream out_;
   const Particles& particles_;
+  OutputFile file_;
   std::vector<std::vector<int>> members_;
 };
 

@@ -86,7 +86,8 @@ std::vector<double> attached_points(const VtuGrid& grid) {
 
 }  // namespace
 
-RenderSummary render_run(const std::string& out_dir, const RenderSettings& s, bool progress) {
+RenderSummary render_run(const std::string& out_dir, const RenderSettings& s,
+                         const std::string& pictures_dir, bool progress) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<FrameFiles> frames = select_frames(list_frames(out_dir), s.every);
   require_program("povray", "povray");
@@ -126,7 +127,8 @@ RenderSummary render_run(const std::string& out_dir, const RenderSettings& s, bo
     scene.scene_size = std::max(scene.scene_size, bounds.hi[k] - bounds.lo[k]);
   scene.radius = radius;
 
-  const fs::path folder = fs::path(out_dir) / "render";
+  const fs::path folder =
+      pictures_dir.empty() ? fs::path(out_dir) / "render" : fs::path(pictures_dir);
   fs::create_directories(folder);
   for (const auto& entry : fs::directory_iterator(folder))
     if (entry.path().extension() == ".png" || entry.path().extension() == ".pov")

@@ -1,6 +1,7 @@
 #pragma once
-// `fissure render OUT_DIR`: a run's frames to PNG pictures (POV-Ray) and an animation
-// (ImageMagick's convert for GIF, ffmpeg for MP4), written to OUT_DIR/render/.
+// `fissure render RUN_DIR`: a run's frames to PNG pictures (POV-Ray) and an animation
+// (ImageMagick's convert for GIF, ffmpeg for MP4), written to RUN_DIR/render/ or the folder
+// --out names.
 #include <string>
 
 #include "render/render_settings.hpp"
@@ -14,8 +15,10 @@ struct RenderSummary {
   double seconds = 0;
 };
 
-// Throws InputError for a missing folder or frames, RunError when a program is missing or fails
-// (the message names the Debian package to install).
-RenderSummary render_run(const std::string& out_dir, const RenderSettings& settings, bool progress);
+// Renders the frames of the run in `run_dir` into `folder` ("": run_dir/render). Throws
+// InputError for a missing folder or frames, RunError when a program is missing or fails (the
+// message names the Debian package to install).
+RenderSummary render_run(const std::string& run_dir, const RenderSettings& settings,
+                         const std::string& folder, bool progress);
 
 }  // namespace fissure

@@ -432,6 +432,21 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
   return s;
 }
 
+// petsc_newton static ramps the loads over integrator.steps increments of time.dt: a time.dt
+// that reaches time.end in fewer increments would end the run part-way up the ramp.
+void check_load_ramp(const YamlReader& r, const TimeSettings& t, const IntegratorSettings& s) {
+  if (s.type != "petsc_newton" || s.scheme != "static" || t.dt_auto) return;
+  const double increments = std::ceil(t.end / t.dt - 1e-9);  // as the run counts its steps
+  if (increments >= s.steps) return;
+  r.fail("time.dt",
+         fmt::format("{:.6g} s reaches time.end = {:.6g} s in {:.0f} load increment(s), but "
+                     "integrator.steps = {} ramps the loads over {} increments: the run would "
+                     "end at {:.3g} of the load. Use time.dt: auto (time.end / integrator.steps), "
+                     "a time.dt of at most {:.6g} s, or integrator.steps: {:.0f}",
+                     t.dt, t.end, increments, s.steps, s.steps, increments / s.steps,
+                     t.end / s.steps, increments));
+}
+
 Config read_config(const YamlReader& r, const YAML::Node& root) {
   r.check_keys(root, "",
                {"name", "time", "integrator", "gravity", "bodies", "constraints", "initial_cracks",
@@ -443,6 +458,7 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
                         : std::filesystem::path(r.file()).stem().string();
   c.time = read_time(r, root["time"]);
   if (const auto n = root["integrator"]) c.integrator = read_integrator(r, n);
+  check_load_ramp(r, c.time, c.integrator);
   if (root["gravity"]) c.gravity = r.vec3(root["gravity"], "gravity");
   const YAML::Node bodies = root["bodies"];
   if (!bodies || !bodies.IsSequence() || bodies.size() == 0)

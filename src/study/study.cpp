@@ -206,14 +206,13 @@ bool make_plot(const std::string& folder) {
 
 }  // namespace
 
-StudyOutcome run_study(const std::string& study_file, bool progress) {
-  const StudyConfig study = load_study(study_file);
+StudyOutcome run_study(const StudyConfig& study, bool progress) {
   const Config scene = load_config(study.scene, study.scene_set);
   const double end = scene.time.end;
   const double interval = study.every > 0 ? study.every : end;
   const long compares = std::lround(end / interval);
   if (std::abs(compares * interval - end) > 1e-9 * end)
-    throw InputError(study_file, "every",
+    throw InputError(study.file, "every",
                      fmt::format("must divide the scene's time.end = {:.6g} s", end));
   std::vector<double> times;
   for (long k = 1; k <= compares; ++k) times.push_back(k * interval);

@@ -6,6 +6,8 @@
 
 namespace fissure {
 
+struct StudyConfig;
+
 struct StudyOutcome {
   int runs = 0;    // sweep points run (the reference not counted)
   int failed = 0;  // of which refused or failed
@@ -13,7 +15,8 @@ struct StudyOutcome {
   std::string folder;
 };
 
-// Throws InputError for an unusable study or scene, RunError when the reference run fails.
-StudyOutcome run_study(const std::string& study_file, bool progress);
+// Runs a study read by load_study into study.output_dir. Throws InputError for an unusable study
+// or scene, RunError when the reference run fails.
+StudyOutcome run_study(const StudyConfig& study, bool progress);
 
 }  // namespace fissure

@@ -55,9 +55,10 @@ std::vector<double> sweep_values(const YamlReader& r, const YAML::Node& node,
 
 }  // namespace
 
-StudyConfig load_study(const std::string& path) {
+StudyConfig load_study(const std::string& path, const std::vector<std::string>& overrides) {
   const YamlReader r(path);
-  const YAML::Node root = load_yaml_with_base(path);
+  YAML::Node root = load_yaml_with_base(path);
+  for (const auto& assignment : overrides) apply_override(root, assignment, path);
   r.check_keys(root, "", {"scene", "set", "every", "reference", "runs", "output", "target"});
   StudyConfig c;
   c.file = path;

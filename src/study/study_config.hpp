@@ -34,7 +34,8 @@ struct StudyConfig {
   std::string target_baseline;
 };
 
-// Reads and checks a study file; InputError naming the file, the key and the reason.
-StudyConfig load_study(const std::string& path);
+// Reads and checks a study file with `overrides` ("key.path=value", fissure study --set) applied
+// to its keys; InputError naming the file, the key and the reason.
+StudyConfig load_study(const std::string& path, const std::vector<std::string>& overrides = {});
 
 }  // namespace fissure

@@ -1,5 +1,6 @@
 #pragma once
 // Runs the fissure executable and captures its exit code and output.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -18,8 +19,9 @@ struct Outcome {
   std::string output;  // stdout and stderr together
 };
 
-inline Outcome run_fissure(const std::string& args) {
-  const std::string command = std::string(FISSURE_BINARY) + " " + args + " 2>&1";
+// Runs a shell command line (/bin/sh), e.g. the binary under `ulimit`.
+inline Outcome run_shell(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   Outcome outcome{-1, ""};
   if (!pipe) return outcome;
@@ -30,8 +32,19 @@ inline Outcome run_fissure(const std::string& args) {
   return outcome;
 }
 
+inline Outcome run_fissure(const std::string& args) {
+  return run_shell(std::string(FISSURE_BINARY) + " " + args);
+}
+
+// A fresh, empty folder named after the running test and `name`: ctest -j runs each test in a
+// process of its own, side by side, so two tests never share (and delete) one folder.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("fissure_test_" + name);
+  std::string test = "outside_a_test";
+  if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
+    test = std::string(info->test_suite_name()) + "." + info->name();
+  for (char& c : test)
+    if (c == '/') c = '_';  // parameterised tests: Prefix/Suite.Name/0
+  const auto dir = std::filesystem::temp_directory_path() / ("fissure_test_" + test + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -83,6 +83,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "", "probes[0].name: use letters, digits"},
         BadCase{"empty_output_dir", scene(kBox), "--set \"output.dir=''\"",
                 "output.dir: must not be empty"},
+        BadCase{"static_load_ramp", scene(kBox),
+                "--set integrator.type=petsc_newton --set integrator.scheme=static "
+                "--set integrator.steps=4 --set time.dt=0.001",
+                "scene.yaml: time.dt: 0.001 s reaches time.end = 0.001 s in 1 load increment(s), "
+                "but integrator.steps = 4 ramps the loads over 4 increments: the run would end at "
+                "0.25 of the load"},
         BadCase{"index_overflow", scene(kBox), "--set bodies[99999999999999999999].x=1",
                 "index 99999999999999999999 out of range"}),
     [](const auto& info) { return info.param.name; });

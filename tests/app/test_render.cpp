@@ -50,6 +50,17 @@ TEST(Render, PicturesOfATinyRunShowTheParticles) {
     for (const auto c : image.rgb) differing += c != image.rgb.front();
     EXPECT_GT(differing, static_cast<long>(image.rgb.size() / 20)) << name;
   }
+  // --out puts the pictures elsewhere; render.every=2 of 3 frames draws the first and the last.
+  const auto elsewhere =
+      test::run_fissure("render " + out.string() + " --out " + (dir / "pictures").string() +
+                        " --set render.width=80 --set render.height=60 "
+                        "--set render.animation=none --set render.every=2");
+  ASSERT_EQ(elsewhere.exit_code, 0) << elsewhere.output;
+  EXPECT_NE(elsewhere.output.find("rendered 2 frames to " + (dir / "pictures").string()),
+            std::string::npos)
+      << elsewhere.output;
+  for (const char* name : {"frame_000000.png", "frame_000002.png"})
+    EXPECT_EQ(test::read_png((dir / "pictures" / name).string()).width, 80) << name;
   // The config's render block is read, and a bad value is named.
   test::write_file(dir / "bad.yaml", std::string(kTinyWall) + "render: {field: stress}\n");
   const auto bad =

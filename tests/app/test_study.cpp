@@ -183,6 +183,37 @@ TEST(Study, ProbeCsvReferenceGivesProbeErrors) {
   EXPECT_NEAR(std::log2(coarse / fine), 1.0, 0.3);
 }
 
+// --out replaces the study file's output.dir and --set its keys, as on fissure run: here the
+// file's two-step sweep becomes one step, and nothing is written where the file points.
+TEST(Study, OutAndSetOnTheCommandLine) {
+  const fs::path dir = test::scratch_dir("study_cli");
+  const std::string scene = std::string(FISSURE_SOURCE_DIR) + "/configs/compare/bar_swing.yaml";
+  test::write_file(dir / "cli.yaml",
+                   "scene: " + scene +
+                       "\nset: [\"time.end=0.01\", \"bodies[0].resolution=0.1\"]\n"
+                       "reference: {integrator: {type: velocity_verlet}, dt: 2.5e-6}\nruns:\n"
+                       "  - {name: velocity_verlet, integrator: {type: velocity_verlet}, dt: "
+                       "[2.0e-5, 1.0e-5]}\noutput: {dir: " +
+                       (dir / "from_file").string() + "}\n");
+  const auto outcome =
+      test::run_fissure("study " + (dir / "cli.yaml").string() + " --out " +
+                        (dir / "from_cli").string() + " --set 'runs[0].dt=[1.0e-5]'");
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_NE(outcome.output.find("in " + (dir / "from_cli").string()), std::string::npos)
+      << outcome.output;
+  EXPECT_FALSE(fs::exists(dir / "from_file"));
+  const auto rows = read_csv(dir / "from_cli" / "results.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("status"), "ok");
+  EXPECT_EQ(rows[0].at("dt"), "1e-05");
+  EXPECT_TRUE(fs::exists(dir / "from_cli" / "reference" / "probes.csv"));
+  // A --set naming a key the study file does not have is refused like one in the file.
+  const auto bad = test::run_fissure("study " + (dir / "cli.yaml").string() + " --set evry=0.005");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("evry: unknown key; did you mean 'every'?"), std::string::npos)
+      << bad.output;
+}
+
 TEST(Study, BadStudyFileNamesFileAndKey) {
   const fs::path dir = test::scratch_dir("study_bad");
   test::write_file(dir / "bad.yaml",

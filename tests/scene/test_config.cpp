@@ -118,6 +118,32 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_NE(other.find("is an option of petsc_newton"), std::string::npos) << other;
 }
 
+// petsc_newton static ramps the loads over integrator.steps increments of time.dt: a time.dt
+// that reaches time.end in fewer is refused (naming both keys), one that takes as many or more
+// (the loads then stay at full) is not.
+TEST(Config, StaticLoadRampMustFitInTheRun) {
+  const std::vector<std::string> static_4 = {"integrator.type=petsc_newton",
+                                             "integrator.scheme=static", "integrator.steps=4"};
+  auto with_dt = [&](const std::string& dt) {
+    std::vector<std::string> overrides = static_4;
+    overrides.push_back("time.dt=" + dt);
+    return error_of(kMinimal, overrides);
+  };
+  for (const char* dt : {"1.0", "0.3334"}) {
+    const std::string e = with_dt(dt);
+    EXPECT_NE(e.find("scene.yaml: time.dt: "), std::string::npos) << dt << ": " << e;
+    EXPECT_NE(e.find("integrator.steps = 4"), std::string::npos) << dt << ": " << e;
+  }
+  EXPECT_NE(with_dt("1.0").find("in 1 load increment(s)"), std::string::npos);
+  EXPECT_NE(with_dt("0.3334").find("end at 0.75 of the load"), std::string::npos);
+  for (const char* dt : {"auto", "0.25", "0.25000000001", "0.125"})
+    EXPECT_EQ(with_dt(dt), "") << dt;
+  // Other schemes have no ramp: a step of time.end is theirs to take.
+  EXPECT_EQ(error_of(kMinimal, {"integrator.type=petsc_newton", "integrator.scheme=newmark",
+                                "integrator.steps=4", "time.dt=1.0"}),
+            "");
+}
+
 TEST(Config, ConstraintNeedsFixOrVelocity) {
   const std::string e = error_of(
       std::string(kMinimal) + "constraints:\n  - {region: {box: {min: [0,0,0], max: [1,1,1]}}}\n");

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/run_fissure.hpp"
 #include "core/error.hpp"
 #include "scene/config.hpp"
 
@@ -12,9 +13,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A folder of this test's own (test::scratch_dir names it after the test) with a sub-folder.
 fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / "fissure_test_config_base";
-  fs::remove_all(dir);
+  const fs::path dir = test::scratch_dir("config_base");
   fs::create_directories(dir / "sub");
   return dir;
 }
