@@ -165,9 +165,15 @@ void NewtonPreconditioner::refresh(const double* z) {
   set_blas_threads(1);
   PCFailedReason reason = PC_NOERROR;
   if (code == 0) petsc_check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
-  if (code != 0 || reason != PC_NOERROR)
+  if (code != 0 || reason != PC_NOERROR) {
+    // CHOLMOD leaves a failed supernodal factor that it cannot refactorize ("cannot operate on
+    // supernodal L"): without a reset every later refresh, the projected tangent's included,
+    // would fail too. The next refresh analyses the pattern afresh.
+    petsc_check(PCReset(pc_), "PCReset");
+    petsc_check(PCSetOperators(pc_, petsc_matrix_, petsc_matrix_), "PCSetOperators");
     throw RunError(fmt::format("the {} preconditioner's {}×{} matrix is not positive definite",
                                preconditioner_name(kind_), matrix_.rows, matrix_.rows));
+  }
   ++factorizations;
 }
 

@@ -7,6 +7,7 @@
 
 #include "app/run_fissure.hpp"
 #include "stability/stability_case.hpp"
+#include "support/two_particles.hpp"
 
 namespace fissure {
 namespace {
@@ -40,6 +41,45 @@ TEST(EnergyLedger, FreeFallBooksGravityWorkExactly) {
     std::printf("%s: gravity work %.6g J, balance error %.6g (expected %.6g)\n", type.c_str(), work,
                 e.at("balance_error"), expected);
   }
+}
+
+// fracture_release against the energy the bond held when it broke. Two particles, one bond
+// (tests/support/two_particles.hpp): A held still, B held moving away along the bond at V, so
+// after step n the extension is e_n = V n h exactly. The bond breaks after the first step with
+// e_n > s_c δ (Eqs 18–19, α = 0, ω|ξ| = δ), here n* = ⌈s_c δ/(V h)⌉ = 112, and releases all it
+// stored: Π(e) = Σ_i V_i ½κθ_i² with θ_i = 3e/L (Eq 6, plain weights), i.e. 9κV e²/L². Bound
+// 1e-6 relative: the model keeps its bond weights in single precision (relative 6e-8 in θ,
+// docs/model.md), the rest is round-off.
+TEST(EnergyLedger, FractureReleaseIsTheBondsEnergyAtTheBreakingStretch) {
+  test::TwoParticles pair;
+  const double sc = 0.01, speed = 0.1, h = 1.3e-5;
+  pair.material_extra = fmt::format(", fracture: {{critical_stretch: {}}}", sc);
+  const double delta = 1.45 * pair.spacing;
+  const double r = 0.3 * pair.spacing;
+  const std::string yaml = fmt::format(
+      "time: {{end: {0}, dt: {1}}}\nintegrator: {{type: velocity_verlet}}\nbodies:\n{2}"
+      "constraints:\n"
+      "  - {{region: {{sphere: {{center: [0, 0, 0], radius: {3}}}}}, fix: true}}\n"
+      "  - {{region: {{sphere: {{center: [{4}, 0, 0], radius: {3}}}}}, velocity: [{5}, 0, 0]}}\n"
+      "output: {{every: {0}}}\n",
+      150 * h, h, pair.body("pair.txt"), r, pair.spacing, speed);
+  const test::CaseRun run =
+      test::run_case("ledger_fracture", yaml, "", {{"pair.txt", pair.points()}});
+  ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  const double breaking_step = std::ceil(sc * delta / (speed * h));
+  ASSERT_EQ(breaking_step, 112);
+  const double released = pair.energy(speed * h * breaking_step);
+  const auto& e = run.energy;
+  std::printf("fracture_release %.9e J, the bond's energy at e = %.4g m: %.9e J (relative %.2e)\n",
+              e.at("fracture_release"), speed * h * breaking_step, released,
+              e.at("fracture_release") / released - 1);
+  EXPECT_EQ(run.number("broken_bonds"), 1);
+  EXPECT_NEAR(e.at("fracture_release"), released, 1e-6 * released);
+  EXPECT_EQ(e.at("elastic"), 0.0);  // a broken bond stores nothing
+  // The constraint's work, booked with the reaction k_s e_k at each step's end (docs/output.md),
+  // is Σ_{k ≤ n*} k_s e_k V h = ½ k_s (V h)² n*(n* + 1): the stored energy times (n* + 1)/n*.
+  EXPECT_NEAR(e.at("constraint_work"), released * (breaking_step + 1) / breaking_step,
+              1e-6 * released);
 }
 
 }  // namespace

@@ -73,6 +73,35 @@ TEST(Colliders, BlockRestsOnGroundPlane) {
   EXPECT_GT(later[0], 0.04);  // still standing on the plane, not fallen through
 }
 
+// The documented penalty (docs/config.md, `contact`): a particle of volume V whose centre is
+// closer to the plane than r = ½V^(1/3) by p feels k p, k = stiffness × κ × V^(1/3). Settled on
+// the plane (as above, stiffness 3), the block's weight is carried by those forces alone, so
+// Σ_i k_i p_i computed from the settled positions with the documented k and r is M g, up to the
+// block's residual acceleration and damping force c M |v̄|: with |v̄| < 1e-4 m/s once settled
+// (test above) that is below c |v̄| / g = 1e-3 of the weight. A k off by a few percent from the
+// documented one moves the sum by as much.
+TEST(Colliders, DocumentedPenaltyCarriesTheWeightAtRest) {
+  auto run = start(
+      "time: {end: 1.0}\ngravity: [0, 0, -9.81]\ndamping: 100\ncontact: {stiffness: 3}\n"
+      "bodies:\n  - geometry: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n    resolution: "
+      "0.025\n"
+      "    material: {density: 1000, bulk_modulus: 1.0e6, shear_modulus: 1.0e6}\n"
+      "colliders:\n  - {plane: {point: [0, 0, 0], normal: [0, 0, 1]}}\n");
+  advance(*run, 0.9 * run->model->stable_time_step(), 0.3);
+  const Particles& p = run->scene.particles;
+  double carried = 0, weight = 0;
+  int touching = 0;
+  for (int i = 0; i < p.count(); ++i) {
+    const double size = std::cbrt(p.volume[i]);
+    const double depth = 0.5 * size - run->state.position[3 * i + 2];
+    if (depth > 0) carried += 3 * 1.0e6 * size * depth, ++touching;
+    weight += p.mass[i] * 9.81;
+  }
+  std::printf("%d particles touch: sum k p %.6f N, weight %.6f N (relative %.2e)\n", touching,
+              carried, weight, carried / weight - 1);
+  EXPECT_NEAR(carried, weight, 1e-3 * weight);
+}
+
 // A dynamic sphere hits a free block (no gravity, no ground). Contact forces act equally and
 // oppositely on particles and sphere within each step and internal forces sum to zero, so the
 // total momentum is conserved to round-off by semi-implicit Euler, and the block picks up

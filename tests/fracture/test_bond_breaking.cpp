@@ -84,6 +84,33 @@ TEST(BondBreaking, HomogeneousStretchBreaksExactlyTheBondsPastTheCriterion) {
   }
 }
 
+// Fracture only in tension (docs/model.md, "Fracture"): under a homogeneous compression of
+// 3 s_c along x, many bonds are shortened by more than s_c δ, past the critical stretch in
+// magnitude, and none breaks. (A criterion on |e| would break every one of them.)
+TEST(BondBreaking, CompressionPastTheCriticalStretchBreaksNothing) {
+  const double sc = 0.01;
+  const Scene scene = bar_scene(sc);
+  auto model = make_model(scene);
+  BondBreaking breaking(scene, *model);
+  const double F[9] = {1 - 3 * sc, 0, 0, 0, 1, 0, 0, 0, 1};
+  const auto y = test::deform(scene.particles, F);
+  const double delta = 1.45 * 0.02;
+  std::size_t past = 0;
+  for (int i = 0; i < scene.particles.count(); ++i)
+    for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b) {
+      const int j = scene.families.neighbors[b];
+      const double e = std::hypot(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1],
+                                  y[3 * j + 2] - y[3 * i + 2]) -
+                       scene.families.reference_length[b];
+      past += -e > sc * delta;
+    }
+  std::printf("compressed bonds past s_c delta in magnitude: %zu of %zu\n", past / 2,
+              scene.families.directed_bonds() / 2);
+  ASSERT_GT(past, 0u);
+  EXPECT_EQ(breaking.run(y.data()), 0u);
+  EXPECT_EQ(breaking.broken_bonds(), 0u);
+}
+
 // A bar whose ends are pulled apart at 2 m/s each comes apart: the two gripped ends end in
 // different pieces. Bonds never heal (every broken flag stays set) and damage stays in [0, 1].
 TEST(BondBreaking, PulledBarComesApartAndBondsNeverHeal) {

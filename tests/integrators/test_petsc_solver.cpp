@@ -1,9 +1,11 @@
-// The PETSc Newton integrator's linear solver is a CHOLMOD Cholesky factorization applied once
-// (KSPPREONLY + PCCHOLESKY), verified through PETSc's own view of the solver.
+// The PETSc Newton integrator's linear solver: a CHOLMOD Cholesky factorization applied once
+// (KSPPREONLY + PCCHOLESKY), verified through PETSc's own view of the solver; and the `auto`
+// tangent's fallback to `projected` where the exact tangent cannot be factorized.
 #include <gtest/gtest.h>
 
 #include <sstream>
 
+#include "core/error.hpp"
 #include "integrators/petsc_newton.hpp"
 #include "support/vibration.hpp"
 
@@ -25,6 +27,63 @@ TEST(PetscSolver, KspViewShowsPreonlyCholeskyWithCholmod) {
   EXPECT_NE(view.find("type: preonly"), std::string::npos);
   EXPECT_NE(view.find("type: cholesky"), std::string::npos);
   EXPECT_NE(view.find("package used to perform factorization: cholmod"), std::string::npos);
+}
+
+double statistic(const Integrator& integrator, const std::string& name) {
+  for (const auto& [key, value] : integrator.statistics())
+    if (key == name) return value;
+  ADD_FAILURE() << "no statistic " << name;
+  return -1;
+}
+
+// The vibration block squeezed to 75% of its size about its centre, at rest: every bond is
+// compressed, so the exact tangent's geometric term (−|t|/ℓ (I − n nᵀ) per bond) is negative,
+// and along a rigid rotation it leaves the Hessian negative (E is invariant under rotations, so
+// its curvature there is −∇E·W²y < 0 when the forces push outward). At 20× the explicit step the
+// inertia A M = M/Δt² of backward Euler is too small to cover it: A M + K is indefinite and its
+// Cholesky factorization fails. With `tangent: exact` the step stops with that message; with
+// `auto` (docs/integrators.md) the stage is redone with the projected tangent (PSD, ⪰ K): the
+// fallback and its refresh of the factor are counted, and the step completes without halving.
+// (Before the preconditioner reset its PC after a failed factorization, CHOLMOD could not
+// refactorize the failed supernodal factor and the projected stage failed too: "Newton did not
+// converge ... DIVERGED_LINEAR_SOLVE after 0 iterations".)
+TEST(PetscSolver, AutoTangentFallsBackToProjectedWhereTheExactFactorizationFails) {
+  auto v = test::make_vibration();
+  State squeezed = v->initial;
+  for (std::size_t k = 0; k < squeezed.position.size(); ++k)
+    squeezed.position[k] = 0.03 + 0.75 * (v->scene.particles.reference[k] - 0.03);
+  const double dt = 20 * v->stable_dt;
+  IntegratorSettings settings;
+  settings.type = "petsc_newton";
+  settings.tangent = "exact";
+  settings.max_step_halvings = 0;
+  {
+    auto exact = make_integrator(settings, "test");
+    State s = squeezed;
+    try {
+      exact->step(*v->dynamics, s, dt);
+      ADD_FAILURE() << "the exact tangent was factorized: the case does not test the fallback";
+    } catch (const RunError& e) {
+      std::printf("tangent exact: %s\n", e.what());
+      EXPECT_NE(std::string(e.what()).find("not positive definite"), std::string::npos);
+    }
+  }
+  settings.tangent = "auto";
+  auto integrator = std::make_unique<PetscNewton>(settings, "test");
+  State s = squeezed;
+  EXPECT_EQ(integrator->step(*v->dynamics, s, dt), dt);
+  // The factor that recovered is CHOLMOD's still.
+  EXPECT_NE(integrator->solver_view().find("package used to perform factorization: cholmod"),
+            std::string::npos);
+  EXPECT_EQ(s.time, dt);
+  for (double y : s.position) ASSERT_TRUE(std::isfinite(y));
+  std::printf("tangent auto: tangent_fallbacks %.0f, refreshes_fallback %.0f, step_halvings %.0f\n",
+              statistic(*integrator, "tangent_fallbacks"),
+              statistic(*integrator, "refreshes_fallback"),
+              statistic(*integrator, "step_halvings"));
+  EXPECT_GE(statistic(*integrator, "tangent_fallbacks"), 1);
+  EXPECT_GE(statistic(*integrator, "refreshes_fallback"), 1);
+  EXPECT_EQ(statistic(*integrator, "step_halvings"), 0);
 }
 
 }  // namespace
