@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <ostream>
 
-#include "core/error.hpp"
+#include "io/output_file.hpp"
 #include "render/field_colors.hpp"
 
 namespace fissure {
@@ -17,7 +17,7 @@ constexpr int kColours = 64;
 
 std::string vec(const Point3& p) { return fmt::format("<{:.6g},{:.6g},{:.6g}>", p[0], p[1], p[2]); }
 
-void write_particles(std::ofstream& out, const PovScene& s) {
+void write_particles(std::ostream& out, const PovScene& s) {
   out << "#declare T = array[" << kColours << "] {\n";
   for (int c = 0; c < kColours; ++c) {
     const auto rgb = cool_warm(c / double(kColours - 1));
@@ -35,7 +35,7 @@ void write_particles(std::ofstream& out, const PovScene& s) {
   }
 }
 
-void write_surface(std::ofstream& out, const PovScene& s) {
+void write_surface(std::ostream& out, const PovScene& s) {
   const std::size_t vertices = s.surface_vertices.size() / 3;
   out << "mesh2 {\n  vertex_vectors { " << vertices;
   for (std::size_t v = 0; v < vertices; ++v)
@@ -52,8 +52,8 @@ void write_surface(std::ofstream& out, const PovScene& s) {
 }  // namespace
 
 void write_pov(const std::string& path, const PovScene& s) {
-  std::ofstream out(path);
-  if (!out) throw RunError("cannot write " + path);
+  OutputFile file(path, OutputFile::Mode::truncate);  // OutputError naming the file and why
+  std::ostream& out = file.stream();
   const double aspect = static_cast<double>(s.width) / s.height;
   Point3 key = s.camera.look_at;
   const Point3 key_direction{-0.4, -1.0, 1.5};
@@ -77,7 +77,7 @@ void write_pov(const std::string& path, const PovScene& s) {
     write_surface(out, s);
   else
     write_particles(out, s);
-  if (!out) throw RunError("cannot write " + path);
+  file.close();
 }
 
 }  // namespace fissure
