@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "stability/stability_case.hpp"
-#include "support/probes_csv.hpp"
+#include "support/csv.hpp"
 
 namespace fissure {
 namespace {
@@ -63,7 +63,7 @@ TEST(ContactLedger, ContactLossIsThePenaltyEnergyOfTheOverlap) {
       test::run_case("ledger_self_contact", yaml, "",
                      {{"a.txt", pair(0, volume, v0)}, {"b.txt", pair(start, volume, -v0)}});
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-  const auto columns = test::read_probes((run.out / "probes.csv").string());
+  const auto columns = test::read_probes(run.out / "probes.csv");
   const double overlap =
       size - (start + columns.at("b.disp_x").back() - columns.at("a.disp_x").back());
   const double penalty = 2 * 0.5 * k * overlap * overlap;  // two contacts
@@ -108,7 +108,7 @@ TEST(ContactLedger, ColliderWorkIsTheBoxSpeedTimesTheMomentumItGave) {
     const test::CaseRun run = test::run_case(fmt::format("ledger_box_push_{}", halving), yaml, "",
                                              {{"block.txt", lattice(n, spacing, 0.0)}});
     ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-    const auto columns = test::read_probes((run.out / "probes.csv").string());
+    const auto columns = test::read_probes(run.out / "probes.csv");
     const auto& t = columns.at("time");
     const auto& x = columns.at("block.pos_x");
     const std::size_t last = t.size() - 1;
@@ -157,7 +157,7 @@ TEST(ContactLedger, FrictionWorkIsMuMGTimesTheSlidingDistance) {
     const test::CaseRun run = test::run_case(fmt::format("ledger_friction_{}", halving), yaml, "",
                                              {{"block.txt", lattice(n, spacing, v0)}});
     ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
-    const auto columns = test::read_probes((run.out / "probes.csv").string());
+    const auto columns = test::read_probes(run.out / "probes.csv");
     const auto& t = columns.at("time");
     const auto& x = columns.at("block.disp_x");
     double sum = 0, lo = 1e300, hi = -1e300;

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "stability/stability_case.hpp"
-#include "support/probes_csv.hpp"
+#include "support/csv.hpp"
 #include "support/two_particles.hpp"
 
 namespace fissure {
@@ -78,7 +78,7 @@ TEST(DampedOscillator, DampingLossIsTheEnergyTheOscillatorLost) {
 // The largest deviation of the extension b.disp_x − a.disp_x from e(t) over the probe rows, in
 // units of the first swing's amplitude u0/ω_d.
 double extension_error(const Oscillator& o, const test::CaseRun& run) {
-  const auto columns = test::read_probes((run.out / "probes.csv").string());
+  const auto columns = test::read_probes(run.out / "probes.csv");
   const auto& t = columns.at("time");
   double largest = 0;
   for (std::size_t r = 0; r < t.size(); ++r) {

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "app/run_fissure.hpp"
+#include "support/csv.hpp"
 
 namespace fissure {
 namespace {
@@ -32,25 +32,6 @@ runs:
 output: {dir: {out}}
 )";
 
-std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
-  std::istringstream in(test::slurp(path));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::istringstream h(line);
-  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    std::istringstream r(line);
-    std::map<std::string, std::string> row;
-    std::string cell;
-    for (std::size_t k = 0; k < header.size() && std::getline(r, cell, ','); ++k)
-      row[header[k]] = cell;
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 // Order observed between the two smallest steps (ω_max h ≤ 0.23 there, the asymptotic regime;
 // at 0.46 Verlet and Newmark still show 1.4 and 1.2), within ±0.3 of nominal, and the error falls
 // at every halving.
@@ -65,7 +46,7 @@ TEST(Study, ErrorFallsWithDtAtEachIntegratorsOrder) {
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
   for (const char* file : {"results.csv", "results.md", "work_precision.png", "work_precision.svg"})
     EXPECT_TRUE(fs::exists(dir / "out" / file)) << file;
-  const auto rows = read_csv(dir / "out" / "results.csv");
+  const auto rows = test::read_records(dir / "out" / "results.csv");
   const std::map<std::string, double> order = {
       {"symplectic_euler", 1}, {"velocity_verlet", 2}, {"backward_euler", 1}, {"newmark", 2}};
   std::map<std::string, std::vector<double>> errors;  // by run, in the order of falling dt
@@ -105,7 +86,7 @@ TEST(Study, AutoStepAmplitudeErrorAndTargetTable) {
           (dir / "out").string() + "}\n");
   const auto outcome = test::run_fissure("study " + (dir / "target.yaml").string());
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
-  const auto rows = read_csv(dir / "out" / "results.csv");
+  const auto rows = test::read_records(dir / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 2u);
   // The stable estimate of this scene (fissure info) times the default safety, divided down.
   const auto info = test::run_fissure("info " + scene + " --set bodies[0].resolution=0.1");
@@ -119,7 +100,7 @@ TEST(Study, AutoStepAmplitudeErrorAndTargetTable) {
   // a whole number of steps per compare interval, to the 6 digits results.csv keeps
   EXPECT_NEAR(0.005 / dt, std::round(0.005 / dt), 1e-5 * 0.005 / dt);
   // The reference's amplitude from its own probes.csv.
-  const auto reference = read_csv(dir / "out" / "reference" / "probes.csv");
+  const auto reference = test::read_records(dir / "out" / "reference" / "probes.csv");
   double amplitude = 0;
   for (const auto& row : reference) {
     double d2 = 0;
@@ -171,7 +152,7 @@ TEST(Study, ProbeCsvReferenceGivesProbeErrors) {
                        (dir / "out").string() + "}\n");
   const auto outcome = test::run_fissure("study " + (dir / "csv.yaml").string());
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
-  const auto rows = read_csv(dir / "out" / "results.csv");
+  const auto rows = test::read_records(dir / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 2u);
   for (const auto& row : rows) {
     EXPECT_EQ(row.at("status"), "ok");
@@ -202,7 +183,7 @@ TEST(Study, OutAndSetOnTheCommandLine) {
   EXPECT_NE(outcome.output.find("in " + (dir / "from_cli").string()), std::string::npos)
       << outcome.output;
   EXPECT_FALSE(fs::exists(dir / "from_file"));
-  const auto rows = read_csv(dir / "from_cli" / "results.csv");
+  const auto rows = test::read_records(dir / "from_cli" / "results.csv");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].at("status"), "ok");
   EXPECT_EQ(rows[0].at("dt"), "1e-05");

@@ -3,41 +3,36 @@
 
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "fracture/bond_breaking.hpp"
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "support/gradient_check.hpp"
 #include "support/scenes.hpp"
+#include "support/state.hpp"
+#include "support/union_find.hpp"
 
 namespace fissure {
 namespace {
 
 Scene bar_scene(double critical_stretch, const std::string& extra = "") {
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.4, 0.08, "
-      "0.08]}}}}\n"
-      "    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: 2.0e6, shear_modulus: "
-      "1.0e6, fracture: {{critical_stretch: {}}}}}\n{}",
-      critical_stretch, extra);
-  return build_scene(parse_config(yaml, "bar.yaml"));
+  return test::block_scene(
+      {.size = {0.4, 0.08, 0.08},
+       .resolution = 0.02,
+       .bulk = 2.0e6,
+       .shear = 1.0e6,
+       .material = fmt::format(", fracture: {{critical_stretch: {}}}", critical_stretch),
+       .scene = extra});
 }
 
 // Piece of each particle: particles connected through intact bonds share a root (union–find).
 std::vector<int> piece_of(const Scene& scene, const BondBreaking& breaking) {
   const int n = scene.particles.count();
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  test::UnionFind pieces(n);
   for (int i = 0; i < n; ++i)
     for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b)
-      if (!breaking.broken()[b]) parent[find(i)] = find(scene.families.neighbors[b]);
-  for (int i = 0; i < n; ++i) parent[i] = find(i);
-  return parent;
+      if (!breaking.broken()[b]) pieces.join(i, scene.families.neighbors[b]);
+  return pieces.roots(n);
 }
 
 int pieces(const Scene& scene, const BondBreaking& breaking) {
@@ -123,8 +118,7 @@ TEST(BondBreaking, PulledBarComesApartAndBondsNeverHeal) {
   Dynamics dynamics(scene, *model);
   BondBreaking breaking(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "bar.yaml");
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0),
-              0};
+  State state = test::at_rest(scene.particles);
   dynamics.constrain_velocity(0, state.velocity.data());
   const double dt = 0.9 * model->stable_time_step();
   std::vector<std::uint8_t> was_broken = breaking.broken();

@@ -14,12 +14,12 @@ namespace fissure {
 namespace {
 
 long fragments_of_block(const std::string& cracks) {
-  const std::string yaml =
-      "time: {end: 1.0}\nbodies:\n  - geometry: {box: {min: [0, 0, 0], max: [0.2, 0.1, 0.1]}}\n"
-      "    resolution: 0.025\n    material: {density: 1000, bulk_modulus: 1.0e6, "
-      "shear_modulus: 1.0e6, fracture: {critical_stretch: 1}}\n" +
-      cracks;
-  const Scene scene = build_scene(parse_config(yaml, "block.yaml"));
+  const Scene scene = test::block_scene({.size = {0.2, 0.1, 0.1},
+                                         .resolution = 0.025,
+                                         .bulk = 1.0e6,
+                                         .shear = 1.0e6,
+                                         .material = ", fracture: {critical_stretch: 1}",
+                                         .scene = cracks});
   auto model = make_model(scene);
   const BondBreaking breaking(scene, *model);  // removes the bonds crossing the cracks
   return count_fragments(scene.families, *model);

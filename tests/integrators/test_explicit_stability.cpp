@@ -8,6 +8,7 @@
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "support/scenes.hpp"
+#include "support/state.hpp"
 
 namespace fissure {
 namespace {
@@ -24,16 +25,12 @@ double total_energy(Model& model, const Scene& scene, const State& s) {
 // higher modes the cosine profile excites. Symplectic Euler's O(ω Δt) error (about 9e-3 here)
 // or a drifting integrator fails it.
 TEST(ExplicitIntegrators, VelocityVerletConservesEnergyOfFreeVibration) {
-  const std::string yaml =
-      "time: {end: 1.0}\nbodies:\n  - geometry: {box: {min: [0, 0, 0], max: [0.6, 0.05, 0.05]}}\n"
-      "    resolution: 0.02\n    material: {density: 1000, bulk_modulus: 2.0e6, shear_modulus: "
-      "1.0e6}\n";
-  const Scene scene = build_scene(parse_config(yaml, "bar.yaml"));
+  const Scene scene = test::block_scene(
+      {.size = {0.6, 0.05, 0.05}, .resolution = 0.02, .bulk = 2.0e6, .shear = 1.0e6});
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "test");
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0),
-              0};
+  State state = test::at_rest(scene.particles);
   for (int i = 0; i < scene.particles.count(); ++i)
     state.velocity[3 * i] = 0.05 * std::cos(M_PI * scene.particles.reference[3 * i] / 0.6);
   const double dt = 0.5 * model->stable_time_step();
@@ -62,8 +59,7 @@ bool goes_unstable(const std::string& type, double factor, double nu) {
   auto integrator = make_integrator(type, "test");
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1e-5, 1e-5);
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0),
-              0};
+  State state = test::at_rest(scene.particles);
   for (double& y : state.position) y += u(rng);
   const double e0 = total_energy(*model, scene, state);
   const double dt = factor * model->stable_time_step();

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "app/energy.hpp"
+#include "support/scenes.hpp"
+#include "support/state.hpp"
 #include "support/static_equilibrium.hpp"
 #include "support/vibration.hpp"
 
@@ -23,16 +25,16 @@ struct Anchored {
 // π²(t²/12)/(4L²) ≈ 1.3%, stays well above 0.3%, so the tangent stays positive definite.
 std::unique_ptr<Anchored> anchored_bar() {
   auto a = std::make_unique<Anchored>();
-  const std::string yaml =
-      "time: {end: 1.0}\nbodies:\n  - geometry: {box: {min: [0, 0, 0], max: [0.2, 0.05, 0.05]}}\n"
-      "    resolution: 0.02\n    material: {density: 1000, bulk_modulus: 2.0e6, shear_modulus: "
-      "1.0e6}\nconstraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.03, 1, 1]}}, fix: "
-      "true}\n";
-  a->scene = build_scene(parse_config(yaml, "anchored.yaml"));
+  a->scene = test::block_scene({.size = {0.2, 0.05, 0.05},
+                                .resolution = 0.02,
+                                .bulk = 2.0e6,
+                                .shear = 1.0e6,
+                                .scene = "constraints:\n  - {region: {box: {min: [-1, -1, -1], "
+                                         "max: [0.03, 1, 1]}}, fix: true}\n"});
   a->model = make_model(a->scene);
   a->dynamics = std::make_unique<Dynamics>(a->scene, *a->model);
   const Particles& p = a->scene.particles;
-  a->initial = {p.reference, std::vector<double>(p.reference.size(), 0.0), 0.0};
+  a->initial = test::at_rest(p);
   for (int i = 0; i < p.count(); ++i) {
     const double x = p.reference[3 * i];
     a->initial.position[3 * i] += 0.001 * x;

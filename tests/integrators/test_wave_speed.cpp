@@ -6,6 +6,7 @@
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "support/scenes.hpp"
+#include "support/state.hpp"
 
 namespace fissure {
 namespace {
@@ -16,19 +17,18 @@ namespace {
 // cancels the time the front needs to form. E = 9κμ/(3κ + μ).
 TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
   const double bulk = 5e6, shear = 5e6, density = 1000;
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [1.5, 0.05, "
-      "0.05]}}}}\n"
-      "    resolution: 0.0125\n    material: {{density: {}, bulk_modulus: {}, shear_modulus: {}}}\n"
-      "constraints:\n  - {{region: {{box: {{min: [-1, -1, -1], max: [0.03, 1, 1]}}}}, velocity: "
-      "[0.01, 0, 0]}}\n",
-      density, bulk, shear);
-  const Scene scene = build_scene(parse_config(yaml, "bar.yaml"));
+  const Scene scene = test::block_scene({.size = {1.5, 0.05, 0.05},
+                                         .resolution = 0.0125,
+                                         .bulk = bulk,
+                                         .shear = shear,
+                                         .density = density,
+                                         .scene = "constraints:\n"
+                                                  "  - {region: {box: {min: [-1, -1, -1], max: "
+                                                  "[0.03, 1, 1]}}, velocity: [0.01, 0, 0]}\n"});
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "test");
-  State state{scene.particles.reference, std::vector<double>(scene.particles.reference.size(), 0.0),
-              0};
+  State state = test::at_rest(scene.particles);
   dynamics.constrain_velocity(0, state.velocity.data());
 
   const double E = 9 * bulk * shear / (3 * bulk + shear);

@@ -21,6 +21,7 @@
 #include "app/run_fissure.hpp"
 #include "scene/config.hpp"
 #include "scene/scene.hpp"
+#include "support/csv.hpp"
 
 namespace fissure {
 namespace {
@@ -311,9 +312,8 @@ TEST(Output, ProbesCsvHeaderAndRows) {
   ASSERT_EQ(lines.size() - 1, expected_times.size());
   std::vector<std::vector<double>> rows;
   for (std::size_t r = 1; r < lines.size(); ++r) {
-    std::stringstream s(lines[r]);
     std::vector<double> v;
-    for (std::string cell; std::getline(s, cell, ',');) {
+    for (const std::string& cell : test::csv_cells(lines[r])) {
       std::size_t used = 0;
       v.push_back(std::stod(cell, &used));
       EXPECT_EQ(used, cell.size()) << cell;

@@ -1,5 +1,6 @@
 #pragma once
-// Mesh measures, a unit-cube fixture and a per-test temp directory for the mesh tests.
+// Mesh measures, a unit-cube fixture and a per-test temp directory for the mesh tests, and
+// expect_input_error (support/error_message.hpp).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "support/error_message.hpp"
 
 namespace fissure::test {
 
@@ -100,19 +101,5 @@ class MeshFileTest : public ::testing::Test {
 
   std::filesystem::path dir_;
 };
-
-// Runs `call`, expecting an InputError naming `file` whose message contains `reason`.
-template <class Call>
-void expect_input_error(Call&& call, const std::string& file, const std::string& reason) {
-  try {
-    call();
-    ADD_FAILURE() << "expected an InputError containing '" << reason << "'";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.file(), file) << what;
-    EXPECT_NE(what.find(file), std::string::npos) << what;
-    EXPECT_NE(what.find(reason), std::string::npos) << what;
-  }
-}
 
 }  // namespace fissure::test

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <functional>
-#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "mesh/mesh_util.hpp"
 #include "mesh/split_mesh.hpp"
 #include "mesh/surface_extract.hpp"
+#include "support/union_find.hpp"
 
 namespace fissure::test {
 
@@ -75,33 +75,20 @@ inline bool face_on_plane(const SplitMesh& s, int f, int axis, double value) {
   return true;
 }
 
-inline int find_root(std::vector<int>& parent, int a) {
-  while (parent[a] != a) a = parent[a] = parent[parent[a]];
-  return a;
-}
-
 // Piece label per tet: tets sharing a vertex id are in one piece.
 inline std::vector<int> pieces_by_vertices(const SplitMesh& s) {
-  std::vector<int> parent(s.tet_count() + s.vertex_count());
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind pieces(s.tet_count() + s.vertex_count());
   for (int t = 0; t < s.tet_count(); ++t)
-    for (int q = 0; q < 4; ++q)
-      parent[find_root(parent, t)] = find_root(parent, s.tet_count() + s.mesh.tets[4 * t + q]);
-  std::vector<int> label(s.tet_count());
-  for (int t = 0; t < s.tet_count(); ++t) label[t] = find_root(parent, t);
-  return label;
+    for (int q = 0; q < 4; ++q) pieces.join(t, s.tet_count() + s.mesh.tets[4 * t + q]);
+  return pieces.roots(s.tet_count());
 }
 
 // Piece label per tet: tets joined through uncracked faces are in one piece.
 inline std::vector<int> pieces_by_faces(const SplitMesh& s, const CrackFaces& cracks) {
-  std::vector<int> parent(s.tet_count());
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind pieces(s.tet_count());
   for (int f = 0; f < 4 * s.tet_count(); ++f)
-    if (s.across[f] >= 0 && !cracks.cracked(f))
-      parent[find_root(parent, f / 4)] = find_root(parent, s.across[f] / 4);
-  std::vector<int> label(s.tet_count());
-  for (int t = 0; t < s.tet_count(); ++t) label[t] = find_root(parent, t);
-  return label;
+    if (s.across[f] >= 0 && !cracks.cracked(f)) pieces.join(f / 4, s.across[f] / 4);
+  return pieces.roots(s.tet_count());
 }
 
 inline int count_labels(std::vector<int> label) {

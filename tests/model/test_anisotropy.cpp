@@ -13,13 +13,12 @@ namespace fissure {
 namespace {
 
 Scene cube(const std::string& anisotropy, const std::string& extra = "") {
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.12, 0.12, "
-      "0.12]}}}}\n"
-      "    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: 1.0e6, shear_modulus: "
-      "1.0e6{}{}}}\n",
-      anisotropy.empty() ? "" : ", anisotropy: " + anisotropy, extra);
-  return build_scene(parse_config(yaml, "cube.yaml"));
+  return test::block_scene(
+      {.size = {0.12, 0.12, 0.12},
+       .resolution = 0.02,
+       .bulk = 1.0e6,
+       .shear = 1.0e6,
+       .material = (anisotropy.empty() ? "" : ", anisotropy: " + anisotropy) + extra});
 }
 
 // G = I is Eq 5: |Iξ| is computed from the same coordinates as |ξ|, so every weight, and hence

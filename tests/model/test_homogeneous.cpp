@@ -161,13 +161,12 @@ TEST(Homogeneous, TetBlockDilatationIsTraceOfStrainEverywhere) {
                        0.5 * eps, -0.2 * eps, 0.5 * eps,  0.1 * eps};
   const double trace = 0.5 * eps;
   for (const bool corrected : {true, false}) {
-    const std::string yaml = fmt::format(
-        "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [{0}, {0}, "
-        "{0}]}}}}\n"
-        "    resolution: {1}\n    material: {{density: 1000, bulk_modulus: 2.0e6, "
-        "shear_modulus: 1.0e6, surface_correction: {2}}}\n",
-        size, lambda, corrected);
-    const Scene scene = build_scene(parse_config(yaml, "block.yaml"));
+    const Scene scene =
+        test::block_scene({.size = {size, size, size},
+                           .resolution = lambda,
+                           .bulk = 2.0e6,
+                           .shear = 1.0e6,
+                           .material = fmt::format(", surface_correction: {}", corrected)});
     auto model = make_model(scene);
     std::vector<double> theta(scene.particles.count(), 0.0);
     for (const double sign : {1.0, -1.0}) {

@@ -15,13 +15,11 @@ namespace {
 Scene plastic_block(double max_plastic_stretch = 0) {
   const std::string cap =
       max_plastic_stretch > 0 ? fmt::format(", max_plastic_stretch: {}", max_plastic_stretch) : "";
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.1, 0.1, "
-      "0.1]}}}}\n"
-      "    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: 1.0e6, shear_modulus: "
-      "1.0e6, plasticity: {{yield_stress: 1.0e4{}}}}}\n",
-      cap);
-  return build_scene(parse_config(yaml, "plastic.yaml"));
+  return test::block_scene({.size = {0.1, 0.1, 0.1},
+                            .resolution = 0.02,
+                            .bulk = 1.0e6,
+                            .shear = 1.0e6,
+                            .material = ", plasticity: {yield_stress: 1.0e4" + cap + "}"});
 }
 
 std::vector<double> sheared(const Particles& p, double gamma) {

@@ -13,12 +13,12 @@ namespace {
 // any excess is the peridynamic surface layer.
 double effective_young_ratio(double width, double lambda, bool corrected) {
   const double kappa = 5e6, mu = 5e6;
-  const std::string yaml = fmt::format(
-      "time: {{end: 1}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.5, {0}, {0}]}}}}\n"
-      "    resolution: {1}\n    material: {{density: 1000, bulk_modulus: {2}, shear_modulus: {3}, "
-      "surface_correction: {4}}}\n",
-      width, lambda, kappa, mu, corrected);
-  const Scene scene = build_scene(parse_config(yaml, "bar.yaml"));
+  const Scene scene =
+      test::block_scene({.size = {0.5, width, width},
+                         .resolution = lambda,
+                         .bulk = kappa,
+                         .shear = mu,
+                         .material = fmt::format(", surface_correction: {}", corrected)});
   auto model = make_model(scene);
   const double nu = (3 * kappa - 2 * mu) / (2 * (3 * kappa + mu));
   const double E = 9 * kappa * mu / (3 * kappa + mu);

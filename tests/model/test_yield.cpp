@@ -21,13 +21,12 @@ constexpr double bulk = 1.0e6, shear = 1.0e6;
 
 // A 0.1 m block at λ = 0.02 with κ = μ = 1 MPa and yield stress σ_y.
 Scene plastic_block(double yield_stress) {
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.1, 0.1, "
-      "0.1]}}}}\n"
-      "    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: {}, shear_modulus: {}, "
-      "plasticity: {{yield_stress: {}}}}}\n",
-      bulk, shear, yield_stress);
-  return build_scene(parse_config(yaml, "plastic.yaml"));
+  return test::block_scene(
+      {.size = {0.1, 0.1, 0.1},
+       .resolution = 0.02,
+       .bulk = bulk,
+       .shear = shear,
+       .material = fmt::format(", plasticity: {{yield_stress: {}}}", yield_stress)});
 }
 
 // ξ̂ᵀ D ξ̂ for a symmetric 3×3 D (row major) and the reference direction of bond b of particle i.

@@ -1,8 +1,8 @@
 // Config parsing: defaults, overrides and key-path errors.
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
 #include "scene/config.hpp"
+#include "support/error_message.hpp"
 
 namespace fissure {
 namespace {
@@ -16,12 +16,7 @@ const char* kMinimal =
     "    material: {density: 1000, bulk_modulus: 5.0e6, shear_modulus: 5.0e6}\n";
 
 std::string error_of(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
-  try {
-    parse_config(yaml, "scene.yaml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_message([&] { parse_config(yaml, "scene.yaml", overrides); });
 }
 
 TEST(Config, DefaultsAreFilledIn) {

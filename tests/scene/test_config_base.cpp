@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "app/run_fissure.hpp"
-#include "core/error.hpp"
 #include "scene/config.hpp"
+#include "support/error_message.hpp"
 
 namespace fissure {
 namespace {
@@ -32,12 +32,7 @@ const char* kBase =
     "    material: {density: 1000, bulk_modulus: 5.0e6, shear_modulus: 5.0e6}\n";
 
 std::string error_of(const fs::path& path) {
-  try {
-    load_config(path.string());
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_message([&] { load_config(path.string()); });
 }
 
 // Maps merge key by key (time.end survives a time.dt override), lists and values replace, the

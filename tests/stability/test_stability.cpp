@@ -7,12 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "model/model.hpp"
 #include "render/vtu_reader.hpp"
 #include "stability/stability_case.hpp"
+#include "support/csv.hpp"
 
 namespace fissure {
 namespace {
@@ -29,16 +28,12 @@ double stable_step(const std::string& yaml) {
 
 // Every number in a CSV file after its header is finite; returns the rows.
 std::vector<std::vector<double>> finite_rows(const std::filesystem::path& csv) {
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
   std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
+  for (const auto& cells : test::read_csv(csv).rows) {
     std::vector<double> row;
-    std::stringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) {
+    for (const std::string& cell : cells) {
       row.push_back(std::stod(cell));
-      EXPECT_TRUE(std::isfinite(row.back())) << csv << ": " << line;
+      EXPECT_TRUE(std::isfinite(row.back())) << csv << ": row " << rows.size() + 1 << ": " << cell;
     }
     rows.push_back(row);
   }

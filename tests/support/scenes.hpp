@@ -2,6 +2,7 @@
 // Small scenes for tests, built through the same path as a user's YAML.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -11,18 +12,40 @@
 
 namespace fissure::test {
 
-// A tet-sampled box [0, size]^3 at edge length λ with the given moduli.
-inline Scene block_scene(double size, double lambda, double bulk, double shear,
-                         const std::string& model = "lps", double horizon = 1.45) {
+// A tet-sampled box [0, size[0]] × [0, size[1]] × [0, size[2]] at edge length λ = resolution.
+struct Block {
+  std::array<double, 3> size;
+  double resolution;
+  double bulk, shear;
+  double density = 1000;
+  std::string model = "lps";
+  double horizon = 1.45;      // δ in units of λ
+  std::string material = "";  // appended to the material map, e.g. ", surface_correction: false"
+  std::string scene = "";     // appended to the scene after the body, e.g. constraints or gravity
+};
+
+inline Scene block_scene(const Block& b) {
   const std::string yaml = fmt::format(
       "time: {{end: 1.0}}\n"
       "bodies:\n"
-      "  - geometry: {{box: {{min: [0, 0, 0], max: [{0}, {0}, {0}]}}}}\n"
-      "    resolution: {1}\n"
-      "    horizon: {5}\n"
-      "    material: {{model: {4}, density: 1000, bulk_modulus: {2}, shear_modulus: {3}}}\n",
-      size, lambda, bulk, shear, model, horizon);
+      "  - geometry: {{box: {{min: [0, 0, 0], max: [{}, {}, {}]}}}}\n"
+      "    resolution: {}\n"
+      "    horizon: {}\n"
+      "    material: {{model: {}, density: {}, bulk_modulus: {}, shear_modulus: {}{}}}\n{}",
+      b.size[0], b.size[1], b.size[2], b.resolution, b.horizon, b.model, b.density, b.bulk, b.shear,
+      b.material, b.scene);
   return build_scene(parse_config(yaml, "test_block.yaml"));
+}
+
+// A tet-sampled cube [0, size]^3 at edge length λ with the given moduli.
+inline Scene block_scene(double size, double lambda, double bulk, double shear,
+                         const std::string& model = "lps", double horizon = 1.45) {
+  return block_scene({.size = {size, size, size},
+                      .resolution = lambda,
+                      .bulk = bulk,
+                      .shear = shear,
+                      .model = model,
+                      .horizon = horizon});
 }
 
 // Indices of particles at least `clearance` from every face of the box [0, size]^3.

@@ -2,9 +2,8 @@
 // The quasi-static equilibrium reached from a state under the scene's loads and constraints:
 // one petsc_newton `static` step (loads applied at once, held regions moved by their velocity ×
 // 1 s), Newton solved to a relative residual of 1e-10.
-#include <vector>
-
 #include "integrators/integrator.hpp"
+#include "support/state.hpp"
 
 namespace fissure::test {
 
@@ -16,11 +15,6 @@ inline State static_equilibrium(Dynamics& dynamics, State start) {
   auto integrator = make_integrator(settings, "test");
   integrator->step(dynamics, start, 1.0);
   return start;
-}
-
-// The particles' reference positions at rest.
-inline State at_rest(const Particles& p) {
-  return {p.reference, std::vector<double>(p.reference.size(), 0.0), 0.0};
 }
 
 }  // namespace fissure::test

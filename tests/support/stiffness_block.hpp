@@ -15,12 +15,11 @@ namespace fissure::test {
 // calibrated weights differ most from the uncorrected ones), ν = 0.125 like the paper's bar.
 // material_options is appended to the material map, e.g. ", plasticity: {yield_stress: 5.0e3}".
 inline Scene small_block(const std::string& material_options = "") {
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [0.06, 0.06, "
-      "0.06]}}}}\n    resolution: 0.02\n    material: {{density: 1000, bulk_modulus: 1.0e6, "
-      "shear_modulus: 1.2e6{}}}\n",
-      material_options);
-  return build_scene(parse_config(yaml, "stiffness.yaml"));
+  return block_scene({.size = {0.06, 0.06, 0.06},
+                      .resolution = 0.02,
+                      .bulk = 1.0e6,
+                      .shear = 1.2e6,
+                      .material = material_options});
 }
 
 // A general deformation: stretch, shear and a rotation, plus a smooth non-affine ripple so that

@@ -7,6 +7,7 @@
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "support/scenes.hpp"
+#include "support/state.hpp"
 
 namespace fissure::test {
 
@@ -24,7 +25,7 @@ inline std::unique_ptr<Vibration> make_vibration(double lambda = 0.02) {
   v->model = make_model(v->scene);
   v->dynamics = std::make_unique<Dynamics>(v->scene, *v->model);
   const Particles& p = v->scene.particles;
-  v->initial = {p.reference, std::vector<double>(p.reference.size(), 0.0), 0.0};
+  v->initial = at_rest(p);
   for (int i = 0; i < p.count(); ++i) {
     const double* x = &p.reference[3 * i];
     v->initial.position[3 * i] +=

@@ -10,6 +10,7 @@
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "support/beam.hpp"
+#include "support/state.hpp"
 
 namespace fissure {
 namespace {
@@ -67,7 +68,7 @@ TEST(CantileverFrequency, FirstBendingModeMatchesBeamTheory) {
   Dynamics dynamics(scene, *model);
   auto integrator = make_integrator("velocity_verlet", "test");
   const Particles& p = scene.particles;
-  State state = {p.reference, std::vector<double>(p.reference.size(), 0.0), 0.0};
+  State state = test::at_rest(p);
   const double scale = amplitude / mode(C::length);
   for (int i = 0; i < p.count(); ++i) {
     const double x = p.reference[3 * i], z = p.reference[3 * i + 2] - 0.5 * C::side;

@@ -8,6 +8,7 @@
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "support/beam.hpp"
+#include "support/scenes.hpp"
 #include "support/static_equilibrium.hpp"
 
 namespace fissure {
@@ -54,15 +55,17 @@ class PoissonRatio : public ::testing::TestWithParam<Material> {};
 TEST_P(PoissonRatio, LateralContractionMatchesNu) {
   const Material m = GetParam();
   const double pull = 5e-4;
-  const std::string yaml = fmt::format(
-      "time: {{end: 1.0}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [1, 0.2, 0.2]}}}}\n"
-      "    resolution: 0.05\n"
-      "    material: {{density: 1000, bulk_modulus: {}, shear_modulus: {}}}\n"
-      "constraints:\n"
-      "  - {{region: {{box: {{min: [-1, -1, -1], max: [0.05, 1, 1]}}}}, velocity: [{}, 0, 0]}}\n"
-      "  - {{region: {{box: {{min: [0.95, -1, -1], max: [2, 1, 1]}}}}, velocity: [{}, 0, 0]}}\n",
-      m.bulk, m.shear, -pull, pull);
-  const Scene scene = build_scene(parse_config(yaml, "stretch.yaml"));
+  const Scene scene =
+      test::block_scene({.size = {1, 0.2, 0.2},
+                         .resolution = 0.05,
+                         .bulk = m.bulk,
+                         .shear = m.shear,
+                         .scene = fmt::format("constraints:\n"
+                                              "  - {{region: {{box: {{min: [-1, -1, -1], max: "
+                                              "[0.05, 1, 1]}}}}, velocity: [{}, 0, 0]}}\n"
+                                              "  - {{region: {{box: {{min: [0.95, -1, -1], max: "
+                                              "[2, 1, 1]}}}}, velocity: [{}, 0, 0]}}\n",
+                                              -pull, pull)});
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
   const Particles& p = scene.particles;
