@@ -97,8 +97,9 @@ TEST_P(Conservation, CollapsedBondCarriesNoForce) {
   const double energy = model->elastic_energy(y.data());
   std::printf("%s: collapsed pair stores %.6e J\n", GetParam(), energy);
   EXPECT_GT(energy, 0.0);
-  if (std::string(GetParam()) == "lps")
+  if (std::string(GetParam()) == "lps") {
     EXPECT_NEAR(energy, pair.energy(-pair.spacing), 1e-6 * energy);
+  }
 }
 
 // In a block, particle j moved onto its neighbour i: every force stays finite and the collapsed
