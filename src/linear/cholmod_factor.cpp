@@ -1,10 +1,12 @@
 #include "linear/cholmod_factor.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "linear/blas_threads.hpp"
 
 namespace fissure {
 
@@ -17,7 +19,11 @@ void CholmodFactor::factorize(const SparseSymmetric& A) {
     analyzed_ = true;
   }
   std::copy(A.values.begin(), A.values.end(), matrix_.valuePtr());
+  // BLAS threads help the factorization's dense blocks and slow the solves' small BLAS-2 calls
+  // (blas_threads.hpp; ARKODE's ark436l2sa on the bar swing: 16.6 s with them, 6.8 s without).
+  set_blas_threads(omp_get_max_threads());
   factor_.factorize(matrix_);
+  set_blas_threads(1);
   ++factorizations_;
   if (factor_.info() != Eigen::Success)
     throw RunError(
