@@ -42,6 +42,13 @@ int pieces(const Scene& scene, const BondBreaking& breaking) {
   return count;
 }
 
+// Bond b's extension e = |y_j − y_i| − |ξ| (Eq 19) of particle i at positions y.
+double extension(const Scene& scene, const std::vector<double>& y, int i, int b) {
+  const int j = scene.families.neighbors[b];
+  return std::hypot(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]) -
+         scene.families.reference_length[b];
+}
+
 // Under a homogeneous stretch every bond's extension is known, so the criterion e/δ > s_c
 // (Eq 19 with α = 0) must split the bonds exactly: broken ones exceed it, intact ones do not.
 // Along x, e ≤ ε|ξ| ≤ εδ, so ε just below s_c breaks nothing.
@@ -59,10 +66,7 @@ TEST(BondBreaking, HomogeneousStretchBreaksExactlyTheBondsPastTheCriterion) {
     std::size_t past = 0;
     for (int i = 0; i < scene.particles.count(); ++i)
       for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b) {
-        const int j = scene.families.neighbors[b];
-        const double e = std::hypot(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1],
-                                    y[3 * j + 2] - y[3 * i + 2]) -
-                         scene.families.reference_length[b];
+        const double e = extension(scene, y, i, b);
         EXPECT_EQ(breaking.broken()[b] != 0, e > sc * delta) << "bond " << b;
         past += e > sc * delta;
       }
@@ -93,10 +97,7 @@ TEST(BondBreaking, CompressionPastTheCriticalStretchBreaksNothing) {
   std::size_t past = 0;
   for (int i = 0; i < scene.particles.count(); ++i)
     for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b) {
-      const int j = scene.families.neighbors[b];
-      const double e = std::hypot(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1],
-                                  y[3 * j + 2] - y[3 * i + 2]) -
-                       scene.families.reference_length[b];
+      const double e = extension(scene, y, i, b);
       past += -e > sc * delta;
     }
   std::printf("compressed bonds past s_c delta in magnitude: %zu of %zu\n", past / 2,
@@ -181,19 +182,10 @@ TEST(BondBreaking, ForcesStayTheEnergyGradientAfterBreaking) {
   auto model = make_model(scene);
   BondBreaking breaking(scene, *model);
   ASSERT_GT(breaking.broken_bonds(), 0u);
-  std::vector<double> y = scene.particles.reference;
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] += 2e-4 * std::sin(1.7 * k);
+  const std::vector<double> y = test::perturbed(scene.particles.reference);
   std::vector<double> f(y.size());
   model->forces(y.data(), f.data());
-  double scale = 0, sum[3] = {0, 0, 0};
-  for (std::size_t k = 0; k < f.size(); ++k) {
-    scale = std::max(scale, std::abs(f[k]));
-    sum[k % 3] += f[k];
-  }
-  // Each force is a sum of about a hundred bond terms, so it carries round-off of order
-  // 64 ε × the largest force; the sum of all of them can be off by that times their count.
-  const double round_off = 64 * std::numeric_limits<double>::epsilon() * scale * f.size();
-  for (double s : sum) EXPECT_LT(std::abs(s), round_off);
+  test::expect_forces_sum_to_zero(f, "initial crack");
   test::expect_force_is_energy_gradient(*model, y);
 }
 
