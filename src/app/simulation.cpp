@@ -461,7 +461,7 @@ RunSummary Simulation::run() {
 RunSummary Simulation::run_steps() {
   const bool adaptive = integrator_->adaptive();
   const double dt = summary_.dt;
-  const long steps = static_cast<long>(std::ceil(config_.time.end / dt - 1e-9));
+  const long steps = steps_to(config_.time.end, dt);
   const double end = config_.time.end;
   summary_.setup_seconds = seconds_since(setup_start_);
   const double tolerance = 1e-9 * dt;

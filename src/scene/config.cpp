@@ -436,14 +436,14 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
 // that reaches time.end in fewer increments would end the run part-way up the ramp.
 void check_load_ramp(const YamlReader& r, const TimeSettings& t, const IntegratorSettings& s) {
   if (s.type != "petsc_newton" || s.scheme != "static" || t.dt_auto) return;
-  const double increments = std::ceil(t.end / t.dt - 1e-9);  // as the run counts its steps
+  const long increments = steps_to(t.end, t.dt);
   if (increments >= s.steps) return;
   r.fail("time.dt",
-         fmt::format("{:.6g} s reaches time.end = {:.6g} s in {:.0f} load increment(s), but "
+         fmt::format("{:.6g} s reaches time.end = {:.6g} s in {} load increment(s), but "
                      "integrator.steps = {} ramps the loads over {} increments: the run would "
                      "end at {:.3g} of the load. Use time.dt: auto (time.end / integrator.steps), "
-                     "a time.dt of at most {:.6g} s, or integrator.steps: {:.0f}",
-                     t.dt, t.end, increments, s.steps, s.steps, increments / s.steps,
+                     "a time.dt of at most {:.6g} s, or integrator.steps: {}",
+                     t.dt, t.end, increments, s.steps, s.steps, double(increments) / s.steps,
                      t.end / s.steps, increments));
 }
 

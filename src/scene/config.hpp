@@ -1,6 +1,7 @@
 #pragma once
 // The scene as plain, validated structs: the rest of the code never sees YAML.
 #include <array>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -123,6 +124,12 @@ struct TimeSettings {
   double dt = 0;        // used when !dt_auto
   double safety = 0.9;  // factor on the stable estimate when dt is auto
 };
+
+// Steps of dt that reach `end`, the last one shortened; a ratio within 1e-9 of a whole number
+// counts as that number (round-off in end / dt does not add a sliver of a step).
+inline long steps_to(double end, double dt) {
+  return static_cast<long>(std::ceil(end / dt - 1e-9));
+}
 
 // The time integrator (docs/integrators.md); only the keys of the chosen type may be given.
 struct IntegratorSettings {

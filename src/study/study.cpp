@@ -50,7 +50,7 @@ std::string folder_name(const StudyPoint& p) {
 // A step that divides the compare interval (so fixed-step frames land on the compare times),
 // as close to dt from below as that allows.
 double dividing_step(double dt, double interval) {
-  return interval / std::ceil(interval / dt - 1e-9);
+  return interval / double(steps_to(interval, dt));
 }
 
 const char* kColumns =
