@@ -91,18 +91,8 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
 }
 
 std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
+  if (kind_ == Kind::sdirk && stage_ > 0) return last_minimiser_;
   std::vector<double> z(state.position.size());
-  if (kind_ == Kind::sdirk && stage_ > 0) {
-    // Y_i = Ŷ_i + γh V_i with V_i extrapolated from the previous stage, V_{i−1} + (c_i −
-    // c_{i−1}) h V'_{i−1}: an error of O(h²) in V_i where Y_{i−1} misses Y_i by O(h).
-    const SdirkTableau& t = *tableau_;
-    const double gh = t.gamma * h, dc = (t.c(stage_) - t.c(stage_ - 1)) * h;
-    const double* v = stage_velocity_[stage_ - 1].data();
-    const double* a = stage_acceleration_[stage_ - 1].data();
-    for (std::size_t k = 0; k < z.size(); ++k)
-      z[k] = explicit_position_[k] + gh * (v[k] + dc * a[k]);
-    return z;
-  }
   const double step = kind_ == Kind::static_equilibrium ? 0.0
                       : kind_ == Kind::sdirk            ? tableau_->c(0) * h
                                                         : (1 - alpha_f_) * h;

@@ -17,13 +17,6 @@ class ImplicitScheme {
   // scheme: backward_euler, newmark, alpha (with ρ∞), sdirk3, sdirk4, static.
   ImplicitScheme(const std::string& scheme, double rho_infinity);
 
-  // Newton's default relative tolerance on the residual. 1e-6 leaves a solution error far below
-  // the truncation error at the steps these schemes are for, and keeps Newmark's energy balance.
-  // An SDIRK stage starts from an O(h²) extrapolation (guess), which one iteration with the
-  // reused factor improves by its contraction (about 3e-2 on the glass cantilever), so 1e-1 takes
-  // that one iteration: the same tip error as 1e-9 there at half the iterations
-  // (docs/integrators.md, "The linear solves").
-  double newton_rtol() const { return kind_ == Kind::sdirk ? 1e-1 : 1e-6; }
   // Minimisations per step: the SDIRK stages, else 1.
   int stages() const { return tableau_ ? tableau_->stages : 1; }
   // Sets inertia() and target() for stage `stage` of a step of size h from y_n, v_n and the
@@ -37,7 +30,7 @@ class ImplicitScheme {
   const std::vector<double>& target() const { return target_; }
   // Newton's starting guess, z at constant velocity: ỹ would add h²a_n, which after a sudden
   // release (a_n large, h large) lands far outside the basin of a good Newton start. For a later
-  // SDIRK stage: Ŷ_i + γh V_i with V_i extrapolated from the previous stage.
+  // SDIRK stage: the previous stage's minimiser.
   std::vector<double> guess(const State& state, double h) const;
   // z of a particle that moves at velocity u through the step (held by a constraint), for the
   // stage last predicted.
