@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -11,11 +12,11 @@
 #include "app/checkpoint.hpp"
 #include "app/energy.hpp"
 #include "app/energy_ledger.hpp"
+#include "app/summary_json.hpp"
 #include "core/error.hpp"
 #include "fracture/fragments.hpp"
 #include "fracture/post_step.hpp"
 #include "integrators/integrator.hpp"
-#include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/probes_csv.hpp"
 #include "io/vtu_writer.hpp"
@@ -64,54 +65,6 @@ double automatic_time_step(const Config& config, const Integrator& integrator, d
   if (s.type == "petsc_newton" && s.scheme == "static") return config.time.end / s.steps;
   if (integrator.adaptive()) return std::min(config.output.every, config.time.end);
   return config.time.safety * stable_dt;
-}
-
-// s with JSON's special characters escaped.
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    out += c;
-  }
-  return out;
-}
-
-// A JSON number, or null where the value is not finite (JSON has no inf or nan).
-std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "null"; }
-
-void write_summary(const std::string& path, const RunSummary& s) {
-  std::string energy;
-  for (const auto& [name, value] : s.energy)
-    energy +=
-        fmt::format("{}\n    \"{}\": {}", energy.empty() ? "" : ",", name, json_number(value));
-  if (!energy.empty()) energy += "\n  ";
-  std::string statistics;
-  for (const auto& [name, value] : s.integrator_statistics)
-    statistics +=
-        fmt::format("{}\n    \"{}\": {}", statistics.empty() ? "" : ",", name, json_number(value));
-  if (!statistics.empty()) statistics += "\n  ";
-  write_atomically(path, [&](std::ostream& out) {
-    out << fmt::format(
-        "{{\n  \"status\": \"{}\",\n  \"particles\": {},\n  \"bonds\": {},\n  \"steps\": {},\n"
-        "  \"dt\": {},\n  \"stable_dt\": {},\n  \"wall_seconds\": {},\n"
-        "  \"seconds_per_step\": {},\n  \"setup_seconds\": {},\n  \"peak_rss_mb\": {},\n"
-        "  \"energy_drift\": {},\n  \"max_speed\": {},\n  \"broken_bonds\": {},\n"
-        "  \"fragments\": {},\n"
-        "  \"post_steps\": {},\n  \"force_evaluations\": {},\n  \"integrator\": \"{}\",\n"
-        "  \"energy\": {{{}}},\n  \"message\": \"{}\",\n"
-        "  \"integrator_statistics\": "
-        "{{{}}}\n}}\n",
-        s.status, s.particles, s.bonds, s.steps, json_number(s.dt), json_number(s.stable_dt),
-        json_number(s.wall_seconds), json_number(s.seconds_per_step), json_number(s.setup_seconds),
-        json_number(s.peak_rss_mb), json_number(s.energy_drift), json_number(s.max_speed),
-        s.broken_bonds, s.fragments, s.post_steps, s.force_evaluations, s.integrator, energy,
-        json_escape(s.message), statistics);
-  });
 }
 
 // Removes the files an earlier run left in `dir`, so frames of two runs never mix.
