@@ -63,11 +63,6 @@ int rhs(realtype t, N_Vector u, N_Vector u_dot, void* user_data) {
   }
 }
 
-void check(int flag, const char* what) {
-  if (flag < 0)
-    throw RunError(fmt::format("ARKODE: {} failed: {}", what, ARKStepGetReturnFlagName(flag)));
-}
-
 }  // namespace
 
 Arkode::Arkode(const IntegratorSettings& settings, const std::string& file)
@@ -110,38 +105,41 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
     if (!s.memory) {
       s.memory = ARKStepCreate(s.explicit_rhs, s.implicit_rhs, state.time, s.u, s.context);
       if (!s.memory) throw RunError("ARKODE: ARKStepCreate failed");
-      check(ARKStepSetUserData(s.memory, &s), "ARKStepSetUserData");
-      check(ARKStepSetTableNum(s.memory, method_.implicit_table, method_.explicit_table),
-            "ARKStepSetTableNum");
-      check(ARKStepSStolerances(s.memory, settings_.rtol, settings_.atol), "ARKStepSStolerances");
-      check(ARKStepSetMaxNumSteps(s.memory, -1), "ARKStepSetMaxNumSteps");
+      arkode_check(ARKStepSetUserData(s.memory, &s), "ARKStepSetUserData");
+      arkode_check(ARKStepSetTableNum(s.memory, method_.implicit_table, method_.explicit_table),
+                   "ARKStepSetTableNum");
+      arkode_check(ARKStepSStolerances(s.memory, settings_.rtol, settings_.atol),
+                   "ARKStepSStolerances");
+      arkode_check(ARKStepSetMaxNumSteps(s.memory, -1), "ARKStepSetMaxNumSteps");
       if (s.implicit_rhs) {
-        s.reduced = std::make_unique<ReducedNewtonSystem>(dynamics, s.memory, s.origin);
+        s.reduced = std::make_unique<ReducedNewtonSystem>(
+            dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov);
         s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get());
-        check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr), "ARKStepSetLinearSolver");
+        arkode_check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr),
+                     "ARKStepSetLinearSolver");
         // A projected or stale tangent makes Newton converge linearly: allow more than the
         // default 3 iterations.
-        check(ARKStepSetMaxNonlinIters(s.memory, 10), "ARKStepSetMaxNonlinIters");
+        arkode_check(ARKStepSetMaxNonlinIters(s.memory, 10), "ARKStepSetMaxNonlinIters");
       }
     } else {
       // Re-initialising resets ARKODE's counters and its step size: keep both.
-      s.carried = statistics();
+      s.carried = arkode_counters();
       realtype last_step = 0;
-      check(ARKStepGetLastStep(s.memory, &last_step), "ARKStepGetLastStep");
-      check(ARKStepReInit(s.memory, s.explicit_rhs, s.implicit_rhs, state.time, s.u),
-            "ARKStepReInit");
+      arkode_check(ARKStepGetLastStep(s.memory, &last_step), "ARKStepGetLastStep");
+      arkode_check(ARKStepReInit(s.memory, s.explicit_rhs, s.implicit_rhs, state.time, s.u),
+                   "ARKStepReInit");
       if (!settings_.fixed_step && last_step > 0)
-        check(ARKStepSetInitStep(s.memory, last_step), "ARKStepSetInitStep");
+        arkode_check(ARKStepSetInitStep(s.memory, last_step), "ARKStepSetInitStep");
     }
     s.fixed_step = 0;
     reinitialise_ = false;
   }
   if (settings_.fixed_step && dt != s.fixed_step) {
-    check(ARKStepSetFixedStep(s.memory, dt), "ARKStepSetFixedStep");
+    arkode_check(ARKStepSetFixedStep(s.memory, dt), "ARKStepSetFixedStep");
     s.fixed_step = dt;
   }
   const double stop = state.time + dt;
-  check(ARKStepSetStopTime(s.memory, stop), "ARKStepSetStopTime");
+  arkode_check(ARKStepSetStopTime(s.memory, stop), "ARKStepSetStopTime");
   realtype reached = state.time;
   const int flag = ARKStepEvolve(s.memory, stop, s.u, &reached, ARK_ONE_STEP);
   if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
@@ -162,36 +160,48 @@ void Arkode::set_tolerances(double rtol, double atol) {
   settings_.rtol = rtol;
   settings_.atol = atol;
   if (solver_ && solver_->memory)
-    check(ARKStepSStolerances(solver_->memory, rtol, atol), "ARKStepSStolerances");
+    arkode_check(ARKStepSStolerances(solver_->memory, rtol, atol), "ARKStepSStolerances");
 }
 
-Statistics Arkode::statistics() const {
-  if (!solver_ || !solver_->memory) return {};
+void Arkode::bonds_changed() {
+  reinitialise_ = true;
+  if (solver_ && solver_->reduced) solver_->reduced->bonds_changed();
+}
+
+// ARKODE's own counters, which a re-initialisation resets (Solver::carried keeps the earlier
+// runs').
+Statistics Arkode::arkode_counters() const {
   void* m = solver_->memory;
   long steps = 0, attempts = 0, error_failures = 0, explicit_rhs = 0, implicit_rhs = 0;
   long newton = 0, convergence_failures = 0, setups = 0;
-  ARKStepGetNumSteps(m, &steps);
-  ARKStepGetNumStepAttempts(m, &attempts);
-  ARKStepGetNumErrTestFails(m, &error_failures);
-  ARKStepGetNumRhsEvals(m, &explicit_rhs, &implicit_rhs);
+  arkode_check(ARKStepGetNumSteps(m, &steps), "ARKStepGetNumSteps");
+  arkode_check(ARKStepGetNumStepAttempts(m, &attempts), "ARKStepGetNumStepAttempts");
+  arkode_check(ARKStepGetNumErrTestFails(m, &error_failures), "ARKStepGetNumErrTestFails");
+  arkode_check(ARKStepGetNumRhsEvals(m, &explicit_rhs, &implicit_rhs), "ARKStepGetNumRhsEvals");
   Statistics stats = {{"steps", double(steps)},
                       {"step_attempts", double(attempts)},
                       {"error_test_failures", double(error_failures)},
                       {"explicit_rhs_evaluations", double(explicit_rhs)},
                       {"implicit_rhs_evaluations", double(implicit_rhs)}};
   if (solver_->reduced) {
-    ARKStepGetNumNonlinSolvIters(m, &newton);
-    ARKStepGetNumNonlinSolvConvFails(m, &convergence_failures);
-    ARKStepGetNumLinSolvSetups(m, &setups);
+    arkode_check(ARKStepGetNumNonlinSolvIters(m, &newton), "ARKStepGetNumNonlinSolvIters");
+    arkode_check(ARKStepGetNumNonlinSolvConvFails(m, &convergence_failures),
+                 "ARKStepGetNumNonlinSolvConvFails");
+    arkode_check(ARKStepGetNumLinSolvSetups(m, &setups), "ARKStepGetNumLinSolvSetups");
     stats.push_back({"newton_iterations", double(newton)});
     stats.push_back({"newton_convergence_failures", double(convergence_failures)});
     stats.push_back({"linear_setups", double(setups)});
-    stats.push_back({"factorizations", double(solver_->reduced->factorizations())});
   }
-  // factorizations are counted by the linear solver, which a re-initialisation keeps
   for (std::size_t k = 0; k < solver_->carried.size(); ++k)
-    if (solver_->carried[k].first != "factorizations")
-      stats[k].second += solver_->carried[k].second;
+    stats[k].second += solver_->carried[k].second;
+  return stats;
+}
+
+Statistics Arkode::statistics() const {
+  if (!solver_ || !solver_->memory) return {};
+  Statistics stats = arkode_counters();
+  // The linear solver's counters: it lives across re-initialisations.
+  if (solver_->reduced) solver_->reduced->append_statistics(stats);
   return stats;
 }
 

@@ -16,7 +16,7 @@ class Arkode final : public Integrator {
   Arkode(const IntegratorSettings& settings, const std::string& file);
   ~Arkode() override;
   double step(Dynamics& dynamics, State& state, double dt) override;
-  void bonds_changed() override { reinitialise_ = true; }
+  void bonds_changed() override;
   bool explicit_step() const override {
     return settings_.fixed_step && method_.kind == ArkodeMethod::Kind::explicit_rk;
   }
@@ -28,6 +28,8 @@ class Arkode final : public Integrator {
   struct Solver;  // the SUNDIALS objects
 
  private:
+  Statistics arkode_counters() const;
+
   IntegratorSettings settings_;
   std::string file_;
   const ArkodeMethod& method_;

@@ -6,13 +6,20 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "integrators/arkode_methods.hpp"
 #include "linear/shifted_system.hpp"
 
 namespace fissure {
 
 ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory,
-                                         const std::vector<double>& origin)
-    : dynamics_(dynamics), arkode_memory_(arkode_memory), origin_(origin) {
+                                         const std::vector<double>& origin, bool reuse,
+                                         int krylov_limit)
+    : dynamics_(dynamics),
+      arkode_memory_(arkode_memory),
+      origin_(origin),
+      reuse_(reuse),
+      krylov_limit_(krylov_limit),
+      cg_(origin.size()) {
   stiffness_ = two_hop_pattern(dynamics.model().families());
   system_ = stiffness_;
   diagonal_ = diagonal_positions(stiffness_);
@@ -20,35 +27,63 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
   mass_.resize(3 * m.size());
   for (std::size_t i = 0; i < m.size(); ++i)
     for (int d = 0; d < 3; ++d) mass_[3 * i + d] = m[i];
-  rhs_.resize(mass_.size());
-  held_step_.resize(mass_.size());
-  coupling_.resize(mass_.size());
+  const std::size_t n = mass_.size();
+  for (auto* v : {&predicted_, &assembled_at_, &scratch_, &rhs_, &held_step_, &coupling_})
+    v->resize(n);
+  fixed_.assign(n, 0);
 }
 
-void ReducedNewtonSystem::setup() {
+void ReducedNewtonSystem::begin_stage_if_new() {
   double t, gamma;
   N_Vector predicted, z, fi, sdata;
   void* user_data;
-  ARKStepGetNonlinearSystemData(arkode_memory_, &t, &predicted, &z, &fi, &gamma, &sdata,
-                                &user_data);
+  arkode_check(ARKStepGetNonlinearSystemData(arkode_memory_, &t, &predicted, &z, &fi, &gamma,
+                                             &sdata, &user_data),
+               "ARKStepGetNonlinearSystemData");
   const double* displacement = N_VGetArrayPointer(predicted);
-  predicted_.resize(mass_.size());
-  for (std::size_t k = 0; k < mass_.size(); ++k) predicted_[k] = origin_[k] + displacement[k];
-  dynamics_.model().assemble_tangent(predicted_.data(), stiffness_, false);
-  projected_ = false;
+  bool same = stage_ > 0 && t == stage_time_;
+  for (std::size_t k = 0; k < mass_.size(); ++k) {
+    scratch_[k] = origin_[k] + displacement[k];
+    same = same && scratch_[k] == predicted_[k];
+  }
+  if (same) return;
+  predicted_.swap(scratch_);
+  stage_time_ = t;
+  ++stage_;
+  stage_solves_ = 0;
+  refreshed_in_stage_ = false;
+  // Without reuse the held set is the last refresh's, as the factor's (today's behaviour); with
+  // it, CG works on the stage's own held set (precondition masks the factor's).
+  if (reuse_) hold_at(t);
+}
+
+void ReducedNewtonSystem::hold_at(double t) {
   std::vector<int> held;
   std::vector<Vec3> velocity;
   dynamics_.held(t, held, velocity);
   fixed_.assign(mass_.size(), 0);
   for (int i : held)
     for (int d = 0; d < 3; ++d) fixed_[3 * i + d] = 1;
-  factorize(gamma);
 }
 
-// The system over γ²: K + M (1 + γc)/γ², i.e. A = (1 + γc)/γ² in shift_and_fix. K is the exact
-// tangent where that is positive definite, else the projected tangent K⁺ (model.hpp).
+void ReducedNewtonSystem::refresh(Refreshes::Reason reason, double gamma) {
+  ++refreshes_.count[reason];
+  pending_ = Refreshes::none;
+  hold_at(stage_time_);
+  assembled_at_ = predicted_;
+  dynamics_.model().assemble_tangent(assembled_at_.data(), stiffness_, false);
+  projected_ = false;
+  factorize(gamma);
+  factor_stage_ = stage_;
+  if (reason == Refreshes::convergence) refreshed_in_stage_ = true;
+  // What the model linearized before (bonds since broken, another tangent) is not reused.
+  linearized_stage_ = -1;
+}
+
+// S = K + M (1 + γc)/γ², i.e. A = (1 + γc)/γ² in shift_and_fix. K is the exact tangent where S
+// is positive definite, else the projected tangent K⁺ (model.hpp), assembled at the same point.
 void ReducedNewtonSystem::factorize(double gamma) {
-  gamma_ = gamma;
+  factor_gamma_ = gamma;
   const double c = dynamics_.damping();
   auto attempt = [&] {
     system_.values = stiffness_.values;
@@ -59,28 +94,51 @@ void ReducedNewtonSystem::factorize(double gamma) {
     attempt();
   } catch (const RunError&) {
     if (projected_) throw;
-    dynamics_.model().assemble_tangent(predicted_.data(), stiffness_, true);
+    ++refreshes_.count[Refreshes::fallback];
+    dynamics_.model().assemble_tangent(assembled_at_.data(), stiffness_, true);
     projected_ = true;
     attempt();
   }
 }
 
-void ReducedNewtonSystem::solve(const double* b, double* x) {
-  double t = 0;
-  ARKStepGetCurrentTime(arkode_memory_, &t);
-  const bool first = fixed_.empty();
-  if (first || t != stage_time_) {
-    stage_time_ = t;
-    stage_solves_ = 0;
-    refreshed_in_stage_ = false;
+bool ReducedNewtonSystem::same_gamma(double gamma) const {
+  return std::abs(gamma - factor_gamma_) <= 1e-12 * factor_gamma_;
+}
+
+bool ReducedNewtonSystem::fresh(double gamma) const {
+  return factor_stage_ == stage_ && same_gamma(gamma);
+}
+
+void ReducedNewtonSystem::solve(const double* b, double* x, double tol) {
+  begin_stage_if_new();
+  ++stage_solves_;
+  double gamma = 0;
+  arkode_check(ARKStepGetCurrentGamma(arkode_memory_, &gamma), "ARKStepGetCurrentGamma");
+  if (pending_ != Refreshes::none) refresh(pending_, gamma);
+  double* dy = x;
+  if (reuse_) {
+    if (!fresh(gamma)) {
+      linearize_stage();
+      reduced_rhs(b, gamma, true);
+      if (solve_by_cg(gamma, tol, dy)) return expand(b, gamma, x);
+    }
+  } else if (stage_solves_ > 5 && !refreshed_in_stage_) {
+    // K is stale (e.g. after large rotations) when a stage needs a sixth Newton iteration;
+    // without this, fixed-step SDIRK failed on the swinging bar.
+    refresh(Refreshes::convergence, gamma);
+  } else if (!same_gamma(gamma)) {
+    ++refreshes_.count[Refreshes::step_size];
+    factorize(gamma);
   }
-  if (first || (++stage_solves_ > 5 && !refreshed_in_stage_)) {
-    refreshed_in_stage_ = !first;
-    setup();
-  }
-  double gamma = gamma_;
-  ARKStepGetCurrentGamma(arkode_memory_, &gamma);
-  if (std::abs(gamma - gamma_) > 1e-12 * gamma_) factorize(gamma);
+  // The factor is S at this γ (fresh, or without reuse with the last assembled K): one
+  // back-solve.
+  reduced_rhs(b, gamma, false);
+  factor_.solve(rhs_.data(), dy);
+  ++back_solves_;
+  expand(b, gamma, x);
+}
+
+void ReducedNewtonSystem::reduced_rhs(const double* b, double gamma, bool matrix_free) {
   const std::size_t n = mass_.size();
   const double* by = b;
   const double* bv = b + n;
@@ -90,19 +148,90 @@ void ReducedNewtonSystem::solve(const double* b, double* x) {
     held_step_[k] = fixed_[k] ? by[k] + gamma * bv[k] : 0.0;
     any_held = any_held || (fixed_[k] && held_step_[k] != 0);
   }
-  if (any_held) stiffness_.multiply(held_step_.data(), coupling_.data());
+  if (any_held && matrix_free) {
+    dynamics_.model().apply_tangent(held_step_.data(), coupling_.data());
+    ++tangent_products_;
+  } else if (any_held) {
+    stiffness_.multiply(held_step_.data(), coupling_.data());
+  }
   const double g2 = gamma * gamma;
   for (std::size_t k = 0; k < n; ++k)
     rhs_[k] = fixed_[k] ? 0.0
                         : (mass_[k] * ((1 + gamma * c) * by[k] + gamma * bv[k])) / g2 -
                               (any_held ? coupling_[k] : 0.0);
+}
+
+// Δy on held unknowns is prescribed; Δv = (Δy − b_y)/γ from the first row of (I − γJ)Δ = b.
+void ReducedNewtonSystem::expand(const double* b, double gamma, double* x) const {
+  const std::size_t n = mass_.size();
   double* dy = x;
   double* dv = x + n;
-  factor_.solve(rhs_.data(), dy);
   for (std::size_t k = 0; k < n; ++k) {
     if (fixed_[k]) dy[k] = held_step_[k];
-    dv[k] = (dy[k] - by[k]) / gamma;
+    dv[k] = (dy[k] - b[k]) / gamma;
   }
+}
+
+void ReducedNewtonSystem::linearize_stage() {
+  if (linearized_stage_ == stage_ && linearized_projected_ == projected_) return;
+  dynamics_.model().linearize(predicted_.data(), projected_);
+  linearized_stage_ = stage_;
+  linearized_projected_ = projected_;
+  ++linearizations_;
+}
+
+void ReducedNewtonSystem::apply_system(double gamma, const double* v, double* out) {
+  dynamics_.model().apply_tangent(v, out);
+  ++tangent_products_;
+  const double shift = (1 + gamma * dynamics_.damping()) / (gamma * gamma);
+  for (std::size_t k = 0; k < mass_.size(); ++k)
+    out[k] = fixed_[k] ? 0.0 : out[k] + shift * mass_[k] * v[k];
+}
+
+// Z F⁻¹ Z, Z zeroing the stage's held unknowns: SPD on the free ones whichever unknowns the
+// factor F held, so CG stays in the free subspace.
+void ReducedNewtonSystem::precondition(const double* r, double* z) {
+  factor_.solve(r, z);
+  ++back_solves_;
+  for (std::size_t k = 0; k < mass_.size(); ++k)
+    if (fixed_[k]) z[k] = 0;
+}
+
+// The stopping test is the one ARKODE asks of its linear solver, ‖b − (I − γJ)x‖₂ ≤ tol (tol
+// is ARKODE's linear tolerance eplifac × its Newton tolerance, already converted by ARKODE from
+// its weighted RMS norm to this unweighted 2-norm for a solver without scaling vectors, ARKLS
+// arkLsSolve), so that the Newton iteration converges as with an exact solve. With Δv from
+// expand, the first block row of that residual vanishes and the second is γ M⁻¹ r, r the
+// residual of (R); the held rows vanish too. A fixed relative tolerance would ignore ARKODE's
+// Newton tolerance, which rtol sets.
+bool ReducedNewtonSystem::solve_by_cg(double gamma, double tol, double* dy) {
+  auto done = [&](const double* r) {
+    double sum = 0;
+    for (std::size_t k = 0; k < mass_.size(); ++k) {
+      const double e = gamma * r[k] / mass_[k];
+      if (!fixed_[k]) sum += e * e;
+    }
+    return std::sqrt(sum) <= tol;
+  };
+  const auto outcome = cg_.solve([&](const double* v, double* out) { apply_system(gamma, v, out); },
+                                 [&](const double* r, double* z) { precondition(r, z); }, done,
+                                 krylov_limit_, rhs_.data(), dy);
+  krylov_iterations_ += cg_.iterations();
+  using O = ConjugateGradient::Outcome;
+  if (outcome == O::converged) return true;
+  // Too slow: the factor is too far from S. Broken down: S (with the exact K) is not positive
+  // definite, and the refresh falls back to K⁺.
+  refresh(outcome == O::iteration_limit ? Refreshes::convergence : Refreshes::fallback, gamma);
+  return false;
+}
+
+void ReducedNewtonSystem::append_statistics(Statistics& stats) const {
+  stats.push_back({"factorizations", double(factor_.factorizations())});
+  stats.push_back({"back_solves", double(back_solves_)});
+  stats.push_back({"krylov_iterations", double(krylov_iterations_)});
+  stats.push_back({"tangent_products", double(tangent_products_)});
+  stats.push_back({"linearizations", double(linearizations_)});
+  refreshes_.append_to(stats);
 }
 
 namespace {
@@ -114,18 +243,9 @@ ReducedNewtonSystem* system_of(SUNLinearSolver S) {
 SUNLinearSolver_Type get_type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
 SUNLinearSolver_ID get_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
 
-int setup(SUNLinearSolver S, SUNMatrix) {
+int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype tol) {
   try {
-    system_of(S)->setup();
-    return 0;
-  } catch (...) {
-    return SUNLS_PACKAGE_FAIL_UNREC;
-  }
-}
-
-int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
-  try {
-    system_of(S)->solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
+    system_of(S)->solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x), tol);
     return 0;
   } catch (...) {
     return SUNLS_PACKAGE_FAIL_UNREC;
@@ -141,10 +261,11 @@ int free_solver(SUNLinearSolver S) {
 
 SUNLinearSolver make_reduced_linear_solver(SUNContext context, ReducedNewtonSystem* system) {
   SUNLinearSolver S = SUNLinSolNewEmpty(context);
+  if (!S) throw RunError("ARKODE: SUNLinSolNewEmpty failed");
   S->content = system;
   S->ops->gettype = get_type;
   S->ops->getid = get_id;
-  S->ops->setup = setup;
+  // no setup: ARKODE 6.4 never calls a matrix-embedded solver's; solve keeps the factor current
   S->ops->solve = solve;
   S->ops->free = free_solver;
   return S;

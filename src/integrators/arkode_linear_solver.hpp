@@ -1,55 +1,107 @@
 #pragma once
 // A SUNLinearSolver for ARKODE's implicit stages that reduces the first-order Newton system to
-// an SPD one in positions and solves it with CHOLMOD (docs/integrators.md). For u = [y − y0; v]
-// (ARKODE integrates the displacement from the run's first state y0) and
-// f_i = [v; M⁻¹F_int(y) − c v], the stage system (I − γJ)Δ = b with J = [[0, I], [−M⁻¹K, −cI]]
-// becomes
-//   (M(1 + γc) + γ²K) Δy = M((1 + γc) b_y + γ b_v),   Δv = (Δy − b_y) / γ,
+// an SPD one in positions and solves it with a CHOLMOD factor, reused across γ changes and
+// stages as the preconditioner of CG (docs/integrators.md). For u = [y − y0; v] (ARKODE
+// integrates the displacement from the run's first state y0) and f_i = [v; M⁻¹F_int(y) − c v],
+// the stage system (I − γJ)Δ = b with J = [[0, I], [−M⁻¹K, −cI]] becomes
+//   S Δy = M((1 + γc) b_y + γ b_v)/γ²,   S = M(1 + γc)/γ² + K,   Δv = (Δy − b_y) / γ,    (R)
 // with K the exact tangent at ARKODE's predicted stage, or the projected tangent K⁺ ⪰ K where
 // the exact one does not give an SPD matrix (model.hpp). Held particles have v̇ = 0: Δy = b_y + γ
 // b_v there, moved to the right-hand side.
+//
+// With reuse (integrator.reuse_factor, the default) the factor of S at one γ and one state
+// preconditions CG on (R) at the current γ, K applied matrix-free at the current stage's
+// prediction; it is refreshed (assembled and factorized at the current stage and γ, after which
+// one back-solve is exact) when CG needs more than integrator.refresh_krylov iterations or breaks
+// down, when bonds broke, and when the factorization is not SPD (then with K⁺). Without reuse,
+// S is refactorized whenever γ changes, with the K of the last assembly.
 #include <sundials/sundials_linearsolver.h>
 
 #include <vector>
 
 #include "integrators/dynamics.hpp"
+#include "integrators/integrator.hpp"
+#include "integrators/refresh_reasons.hpp"
 #include "linear/cholmod_factor.hpp"
+#include "linear/conjugate_gradient.hpp"
 #include "linear/sparse_symmetric.hpp"
 
 namespace fissure {
 
 class ReducedNewtonSystem {
  public:
-  // origin: y0, the positions ARKODE's displacement unknowns are measured from.
-  ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory, const std::vector<double>& origin);
-  // Assembles K at ARKODE's predicted stage and factorizes.
-  void setup();
-  // x = (I − γJ)⁻¹ b, refactorizing first if ARKODE's γ changed since the last factorization.
-  // ARKODE 6.4 does not call setup for a matrix-embedded solver, so the matrix is refreshed here
-  // too: at the first solve, and when a stage needs a sixth Newton iteration (K is stale, e.g.
-  // after large rotations), at that stage's prediction.
-  void solve(const double* b, double* x);
-  long factorizations() const { return factor_.factorizations(); }
+  // origin: y0, the positions ARKODE's displacement unknowns are measured from. reuse and
+  // krylov_limit: integrator.reuse_factor and integrator.refresh_krylov.
+  ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory, const std::vector<double>& origin,
+                      bool reuse, int krylov_limit);
+  // x = (I − γJ)⁻¹ b, with ‖b − (I − γJ)x‖₂ ≤ tol where CG is used (solve_by_cg). ARKODE 6.4
+  // does not call setup for a matrix-embedded solver, so the matrix is refreshed here: at the
+  // first solve, after bonds broke and as the reuse policy says.
+  void solve(const double* b, double* x, double tol);
+  // Bonds broke: the factor is refreshed at the next solve.
+  void bonds_changed() { pending_ = Refreshes::bonds; }
+  // factorizations, back_solves, krylov_iterations, tangent_products, linearizations and the
+  // refreshes per reason (petsc_newton's names).
+  void append_statistics(Statistics& stats) const;
 
  private:
+  // Stage bookkeeping: a solve with another t or prediction than the last begins a stage.
+  void begin_stage_if_new();
+  // fixed_: the unknowns constraints hold at t.
+  void hold_at(double t);
+  // Assembles K at the stage's prediction and factorizes S at gamma (K⁺ if S is not SPD).
+  void refresh(Refreshes::Reason reason, double gamma);
+  // Factorizes S at gamma with the assembled K; where that is not SPD, assembles K⁺ at the
+  // same point and factorizes again (a refresh for `fallback`).
   void factorize(double gamma);
+  bool same_gamma(double gamma) const;  // as the factor's, to round-off
+  // The factor is S itself: made in this stage, at this γ.
+  bool fresh(double gamma) const;
+  // rhs_ and held_step_ of (R) for b; the held particles' coupling −K Δy_held uses the
+  // assembled K, or the matrix-free one when `matrix_free`.
+  void reduced_rhs(const double* b, double gamma, bool matrix_free);
+  // x = [Δy; Δv] from Δy (x's first half) by (R).
+  void expand(const double* b, double gamma, double* x) const;
+  // CG on (R) preconditioned by the factor; false when it needed more than the limit or broke
+  // down (dy is then to be overwritten).
+  bool solve_by_cg(double gamma, double tol, double* dy);
+  // out = S v on free unknowns (v zero on held ones), 0 on held ones; K matrix-free.
+  void apply_system(double gamma, const double* v, double* out);
+  // z = the factor's solve of r, zero on held unknowns.
+  void precondition(const double* r, double* z);
+  // The model's matrix-free tangent at the stage's prediction, with the factor's tangent
+  // choice (exact or K⁺).
+  void linearize_stage();
 
   Dynamics& dynamics_;
   void* arkode_memory_;
   const std::vector<double>& origin_;
-  SparseSymmetric stiffness_;      // K at the last setup
-  std::vector<double> predicted_;  // the positions K was assembled at
-  bool projected_ = false;         // K is K⁺
-  SparseSymmetric system_;         // M(1 + γc) + γ²K with held unknowns taken out, over γ²
+  bool reuse_;
+  int krylov_limit_;
+  SparseSymmetric stiffness_;         // K at the last assembly
+  std::vector<double> assembled_at_;  // ... at these positions
+  SparseSymmetric system_;            // S with held unknowns taken out
   std::vector<int> diagonal_;
   std::vector<double> mass_;  // per unknown
-  std::vector<char> fixed_;   // per position unknown: held at the last setup
   CholmodFactor factor_;
-  double gamma_ = 0;
-  double stage_time_ = 0;  // t of the stage the last solve belonged to
-  int stage_solves_ = 0;   // solves (Newton iterations) in that stage
+  ConjugateGradient cg_;
+  // The stage: ARKODE's t and predicted positions, which unknowns are held, its solves.
+  double stage_time_ = 0;
+  std::vector<double> predicted_;
+  std::vector<char> fixed_;
+  long stage_ = 0;  // stages begun
+  int stage_solves_ = 0;
   bool refreshed_in_stage_ = false;
-  std::vector<double> rhs_, held_step_, coupling_;
+  // The factor: its γ, the stage it was made in, whether its K is K⁺.
+  double factor_gamma_ = 0;
+  long factor_stage_ = -1;
+  bool projected_ = false;
+  long linearized_stage_ = -1;  // the stage the model's matrix-free tangent belongs to
+  bool linearized_projected_ = false;
+  Refreshes::Reason pending_ = Refreshes::first;
+  Refreshes refreshes_;
+  long back_solves_ = 0, krylov_iterations_ = 0, tangent_products_ = 0, linearizations_ = 0;
+  std::vector<double> scratch_, rhs_, held_step_, coupling_;
 };
 
 // Wraps `system` (not owned) as a matrix-embedded SUNLinearSolver.

@@ -1,5 +1,8 @@
 #include "integrators/arkode_methods.hpp"
 
+#include <arkode/arkode_arkstep.h>
+#include <fmt/format.h>
+
 #include "core/error.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -31,6 +34,11 @@ const ArkodeMethod& arkode_method(const std::string& name, const std::string& fi
     names.push_back(m.name);
   }
   throw InputError(file, "integrator.method", unknown_choice("ARKODE method", name, names));
+}
+
+void arkode_check(int flag, const char* what) {
+  if (flag < 0)
+    throw RunError(fmt::format("ARKODE: {} failed: {}", what, ARKStepGetReturnFlagName(flag)));
 }
 
 }  // namespace fissure

@@ -26,4 +26,7 @@ const std::vector<ArkodeMethod>& arkode_methods();
 // The method called `name`; throws InputError naming the valid ones otherwise.
 const ArkodeMethod& arkode_method(const std::string& name, const std::string& file);
 
+// Throws RunError naming `what` and ARKStep's flag when flag < 0 (an ARKStep call failed).
+void arkode_check(int flag, const char* what);
+
 }  // namespace fissure

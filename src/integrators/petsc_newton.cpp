@@ -4,7 +4,6 @@
 #include <petscsnes.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -18,6 +17,7 @@
 #include "integrators/newton_preconditioner.hpp"
 #include "integrators/newton_system.hpp"
 #include "integrators/petsc_session.hpp"
+#include "integrators/refresh_reasons.hpp"
 
 namespace fissure {
 
@@ -51,9 +51,9 @@ struct PetscNewton::Solver {
   // Refresh policy (docs/integrators.md, "The linear solves"): the factor is refreshed at the
   // next Newton iteration when `pending` names a reason, when A or the tangent choice changed
   // since it was made, or when the last iterations converged too slowly.
-  enum Refresh { none, first, step_size, bonds, convergence, fallback, every_iteration, reasons };
-  Refresh pending = first;
-  std::array<long, reasons> refreshes{};  // per reason
+  using Refresh = Refreshes::Reason;
+  Refresh pending = Refreshes::first;
+  Refreshes refreshes;
   double factor_inertia = -1;
   std::string factor_tangent;
   bool factor_failed = false;        // the last refresh met a matrix not positive definite
@@ -116,25 +116,25 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
 
 // Why the factor must be refreshed before this Newton iteration's linear solve, or none.
 Solver::Refresh refresh_reason(Solver& s) {
-  if (s.pending != Solver::none) return s.pending;
-  if (!s.reuse) return Solver::every_iteration;
+  if (s.pending != Refreshes::none) return s.pending;
+  if (!s.reuse) return Refreshes::every_iteration;
   // A last step shortened only by the round-off of end − t changes A in its last digits: the
   // factor stays an exact-enough Newton matrix (at 1e4 particles a refresh costs 100 solves).
   if (std::abs(s.system.inertia() - s.factor_inertia) > 1e-6 * s.factor_inertia)
-    return Solver::step_size;
-  if (s.system.tangent() != s.factor_tangent) return Solver::fallback;
-  if (!s.preconditioner->follows_the_state()) return Solver::none;
+    return Refreshes::step_size;
+  if (s.system.tangent() != s.factor_tangent) return Refreshes::fallback;
+  if (!s.preconditioner->follows_the_state()) return Refreshes::none;
   const std::size_t k = s.norms.size();
   if (k >= 2 && s.norms[k - 2] > 10 * s.floor &&
       s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2])
-    return Solver::convergence;
-  if (s.iterations_since_refresh >= s.refresh_iterations) return Solver::convergence;
+    return Refreshes::convergence;
+  if (s.iterations_since_refresh >= s.refresh_iterations) return Refreshes::convergence;
   if (s.krylov && k >= 2) {
     PetscInt its = 0;
     petsc_check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
-    if (its > s.refresh_krylov) return Solver::convergence;
+    if (its > s.refresh_krylov) return Refreshes::convergence;
   }
-  return Solver::none;
+  return Refreshes::none;
 }
 
 // The Newton matrix is matrix-free; what PETSc calls the Jacobian evaluation only moves its
@@ -146,18 +146,18 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
     petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
     s->system.linearize(z);
     const Solver::Refresh reason = refresh_reason(*s);
-    if (reason != Solver::none) {
-      s->pending = Solver::none;
+    if (reason != Refreshes::none) {
+      s->pending = Refreshes::none;
       s->factor_inertia = s->system.inertia();
       s->factor_tangent = s->system.tangent();
       s->iterations_since_refresh = 0;
-      ++s->refreshes[reason];
+      ++s->refreshes.count[reason];
       try {
         s->preconditioner->refresh(z);
       } catch (const RunError&) {
         // Not positive definite: the solve fails like a failed linear solve, and the step is
         // redone (auto tangent: with the projected tangent) or halved.
-        s->pending = Solver::fallback;
+        s->pending = Refreshes::fallback;
         s->factor_failed = true;
         petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
         throw;
@@ -371,7 +371,7 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
 void PetscNewton::bonds_changed() {
   if (!solver_) return;
   solver_->preconditioner->bonds_changed();
-  solver_->pending = Solver::bonds;
+  solver_->pending = Refreshes::bonds;
 }
 
 void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
@@ -464,7 +464,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
       s.reuse = false;
       solved = solve_stage();
       s.reuse = true;
-      s.pending = Solver::fallback;
+      s.pending = Refreshes::fallback;
     }
     if (!solved && settings_.tangent != "auto" && reason == SNES_DIVERGED_LINEAR_SOLVE) {
       return fmt::format(
@@ -511,26 +511,23 @@ Statistics PetscNewton::statistics() const {
   const Solver& s = *solver_;
   const NewtonSystem& y = s.system;
   const NewtonPreconditioner& p = *s.preconditioner;
-  return {{"newton_iterations", double(s.newton_iterations)},
-          {"linear_solves", double(s.newton_iterations)},  // one per Newton iteration
-          {"krylov_iterations", double(s.krylov_iterations)},
-          {"line_search_cuts", double(s.line_search.cuts)},
-          {"assemblies", double(p.assemblies)},
-          {"factorizations", double(p.factorizations)},
-          {"back_solves", double(p.back_solves)},
-          {"tangent_products", double(y.tangent_products)},
-          {"linearizations", double(y.linearizations)},
-          {"tangent_fallbacks", double(s.tangent_fallbacks)},
-          {"step_halvings", double(s.step_halvings)},
-          {"fresh_newton_retries", double(s.fresh_newton_retries)},
-          {"residual_evaluations", double(y.residual_passes)},
-          {"objective_evaluations", double(y.objective_passes)},
-          {"reused_evaluations", double(y.cache_hits)},
-          {"refreshes_step_size", double(s.refreshes[Solver::step_size])},
-          {"refreshes_bonds_broken", double(s.refreshes[Solver::bonds])},
-          {"refreshes_convergence", double(s.refreshes[Solver::convergence])},
-          {"refreshes_fallback", double(s.refreshes[Solver::fallback])},
-          {"refreshes_every_iteration", double(s.refreshes[Solver::every_iteration])}};
+  Statistics stats = {{"newton_iterations", double(s.newton_iterations)},
+                      {"linear_solves", double(s.newton_iterations)},  // one per Newton iteration
+                      {"krylov_iterations", double(s.krylov_iterations)},
+                      {"line_search_cuts", double(s.line_search.cuts)},
+                      {"assemblies", double(p.assemblies)},
+                      {"factorizations", double(p.factorizations)},
+                      {"back_solves", double(p.back_solves)},
+                      {"tangent_products", double(y.tangent_products)},
+                      {"linearizations", double(y.linearizations)},
+                      {"tangent_fallbacks", double(s.tangent_fallbacks)},
+                      {"step_halvings", double(s.step_halvings)},
+                      {"fresh_newton_retries", double(s.fresh_newton_retries)},
+                      {"residual_evaluations", double(y.residual_passes)},
+                      {"objective_evaluations", double(y.objective_passes)},
+                      {"reused_evaluations", double(y.cache_hits)}};
+  s.refreshes.append_to(stats);
+  return stats;
 }
 
 std::string PetscNewton::solver_view() const {

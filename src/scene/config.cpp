@@ -335,20 +335,26 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
                                           "max_step_halvings",
                                           "preconditioner",
                                           "krylov",
-                                          "reuse_factor",
                                           "refresh_contraction",
-                                          "refresh_iterations",
-                                          "refresh_krylov"};
+                                          "refresh_iterations"};
   const std::vector<std::string> arkode = {"method", "rtol", "atol", "fixed_step"};
+  // The factor reuse of both implicit integrators' linear solves (docs/integrators.md).
+  const std::vector<std::string> implicit = {"reuse_factor", "refresh_krylov"};
   std::vector<std::string> allowed = {"type", "allow_unstable_dt", "energy_growth_limit"};
   if (s.type == "petsc_newton") allowed.insert(allowed.end(), petsc.begin(), petsc.end());
   if (s.type == "arkode") allowed.insert(allowed.end(), arkode.begin(), arkode.end());
+  const bool is_implicit = s.type == "petsc_newton" || s.type == "arkode";
+  if (is_implicit) allowed.insert(allowed.end(), implicit.begin(), implicit.end());
   for (const auto& key : petsc)
     if (node[key] && s.type != "petsc_newton")
       r.fail("integrator." + key, fmt::format("is an option of petsc_newton, not of '{}'", s.type));
   for (const auto& key : arkode)
     if (node[key] && s.type != "arkode")
       r.fail("integrator." + key, fmt::format("is an option of arkode, not of '{}'", s.type));
+  for (const auto& key : implicit)
+    if (node[key] && !is_implicit)
+      r.fail("integrator." + key,
+             fmt::format("is an option of petsc_newton and arkode, not of '{}'", s.type));
   r.check_keys(node, "integrator", allowed);
   if (node["allow_unstable_dt"])
     s.allow_unstable_dt = r.boolean(node["allow_unstable_dt"], "integrator.allow_unstable_dt");

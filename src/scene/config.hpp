@@ -154,7 +154,8 @@ struct IntegratorSettings {
   // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
   enum class Krylov { automatic, none, cg, gmres };
   Krylov krylov = Krylov::automatic;
-  bool reuse_factor = true;           // false: a fresh factorization at every Newton iteration
+  // petsc_newton and arkode (reuse_factor, refresh_krylov; docs/integrators.md)
+  bool reuse_factor = true;  // false: refactorize at every Newton iteration (arkode: γ change)
   double refresh_contraction = 0.25;  // refresh when |r_k+1| / |r_k| exceeds this
   int refresh_iterations = 6;         // ... or a step's Newton iterations since the refresh do
   int refresh_krylov = 40;            // ... or one linear solve needs more Krylov iterations

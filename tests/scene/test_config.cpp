@@ -111,6 +111,15 @@ TEST(Config, NewtonSolverKeys) {
   }
   const std::string other = error_of(kMinimal, {"integrator.preconditioner=scalar"});
   EXPECT_NE(other.find("is an option of petsc_newton"), std::string::npos) << other;
+  // arkode reads the two keys of factor reuse (docs/integrators.md); explicit types do not.
+  const Config a = parse_config(
+      kMinimal, "scene.yaml",
+      {"integrator.type=arkode", "integrator.reuse_factor=false", "integrator.refresh_krylov=7"});
+  EXPECT_FALSE(a.integrator.reuse_factor);
+  EXPECT_EQ(a.integrator.refresh_krylov, 7);
+  const std::string explicit_type = error_of(kMinimal, {"integrator.reuse_factor=false"});
+  EXPECT_NE(explicit_type.find("is an option of petsc_newton and arkode"), std::string::npos)
+      << explicit_type;
 }
 
 // petsc_newton static ramps the loads over integrator.steps increments of time.dt: a time.dt
