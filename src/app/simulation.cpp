@@ -141,6 +141,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   scene_ = build_scene(config);
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
+  integrator_->check(*dynamics_);  // before the output folder is touched
   post_step_ = std::make_unique<PostStep>(scene_, *model_, true);
   summary_.integrator = config.integrator.type;
   summary_.particles = scene_.particles.count();

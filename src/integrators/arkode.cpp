@@ -70,9 +70,18 @@ Arkode::Arkode(const IntegratorSettings& settings, const std::string& file)
 
 Arkode::~Arkode() = default;
 
+void Arkode::check(const Dynamics& dynamics) const {
+  if (method_.kind != ArkodeMethod::Kind::explicit_rk && !dynamics.model().has_stiffness())
+    throw InputError(file_, "integrator.method",
+                     fmt::format("'{}' is implicit, and material.model '{}' provides no "
+                                 "stiffness; use material.model: lps or an explicit method",
+                                 method_.name, dynamics.model().name()));
+}
+
 double Arkode::step(Dynamics& dynamics, State& state, double dt) {
   const std::size_t n = state.position.size();
   if (!solver_) {
+    check(dynamics);
     solver_ = std::make_unique<Solver>(dynamics);
     Solver& s = *solver_;
     s.u = N_VNew_Serial(static_cast<sunindextype>(2 * n), s.context);
@@ -91,11 +100,6 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         s.implicit_rhs = rhs<&Dynamics::implicit_acceleration, true>;
         break;
     }
-    if (method_.kind != K::explicit_rk && !dynamics.model().has_stiffness())
-      throw InputError(file_, "integrator.method",
-                       fmt::format("'{}' is implicit, and material.model '{}' provides no "
-                                   "stiffness; use material.model: lps or an explicit method",
-                                   method_.name, dynamics.model().name()));
   }
   Solver& s = *solver_;
   if (!s.memory || reinitialise_) {

@@ -15,6 +15,7 @@ class Arkode final : public Integrator {
  public:
   Arkode(const IntegratorSettings& settings, const std::string& file);
   ~Arkode() override;
+  void check(const Dynamics& dynamics) const override;
   double step(Dynamics& dynamics, State& state, double dt) override;
   void bonds_changed() override;
   bool explicit_step() const override {

@@ -36,6 +36,7 @@ class Dynamics {
   // The particles a constraint holds at time t and the velocity each one moves at.
   void held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const;
   Model& model() { return model_; }
+  const Model& model() const { return model_; }
   const std::vector<double>& mass() const { return mass_; }
   double damping() const { return damping_; }
   const double* gravity() const { return gravity_; }

@@ -27,6 +27,10 @@ class Integrator {
   // Advances `state` by one step of dt, or of at most dt for an adaptive integrator, and
   // returns the step taken.
   virtual double step(Dynamics& dynamics, State& state, double dt) = 0;
+  // Checks the options against the scene before the run writes anything (and before the first
+  // step): throws InputError naming the key, e.g. an implicit method with a model that gives no
+  // stiffness.
+  virtual void check(const Dynamics&) const {}
   // The bond set changed (fracture): drop anything computed from the old bonds.
   virtual void bonds_changed() {}
   // True when dt is bounded by the explicit stability limit (notes §4).

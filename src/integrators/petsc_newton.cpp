@@ -219,11 +219,20 @@ PetscErrorCode monitor(SNES, PetscInt iteration, PetscReal norm, void* context) 
   return 0;
 }
 
-void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::string& file) {
-  petsc_check(PetscOptionsCreate(&s.options), "options");
-  if (PetscOptionsInsertString(s.options, settings.petsc_options.c_str()) != 0)
+// The options database of one integrator, from integrator.petsc_options.
+PetscOptions read_petsc_options(const IntegratorSettings& settings, const std::string& file) {
+  PetscOptions options;
+  petsc_check(PetscOptionsCreate(&options), "PetscOptionsCreate");
+  if (PetscOptionsInsertString(options, settings.petsc_options.c_str()) != 0) {
+    petsc_check(PetscOptionsDestroy(&options), "PetscOptionsDestroy");
     throw InputError(file, "integrator.petsc_options",
                      fmt::format("PETSc cannot read '{}'", settings.petsc_options));
+  }
+  return options;
+}
+
+void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::string& file) {
+  s.options = read_petsc_options(settings, file);
   using P = IntegratorSettings::Preconditioner;
   using K = IntegratorSettings::Krylov;
   const Families& families = s.system.dynamics().model().families();
@@ -344,14 +353,20 @@ PetscNewton::PetscNewton(const IntegratorSettings& settings, const std::string& 
 
 PetscNewton::~PetscNewton() = default;
 
+void PetscNewton::check(const Dynamics& dynamics) const {
+  if (!dynamics.model().has_stiffness())
+    throw InputError(file_, "integrator.type",
+                     fmt::format("material.model '{}' provides no stiffness for petsc_newton; "
+                                 "use material.model: lps",
+                                 dynamics.model().name()));
+  ensure_petsc();
+  PetscOptions options = read_petsc_options(settings_, file_);
+  petsc_check(PetscOptionsDestroy(&options), "PetscOptionsDestroy");
+}
+
 double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
   if (!solver_) {
-    if (!dynamics.model().has_stiffness())
-      throw InputError(file_, "integrator.type",
-                       fmt::format("material.model '{}' provides no stiffness for petsc_newton; "
-                                   "use material.model: lps",
-                                   dynamics.model().name()));
-    ensure_petsc();
+    check(dynamics);
     solver_ = std::make_unique<Solver>(dynamics, settings_);
     set_up_petsc(*solver_, settings_, file_);
     if (const std::vector<double>* a = find_array(restored_, "integrator.acceleration")) {

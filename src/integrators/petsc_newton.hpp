@@ -16,6 +16,7 @@ class PetscNewton final : public Integrator {
  public:
   PetscNewton(const IntegratorSettings& settings, const std::string& file);
   ~PetscNewton() override;
+  void check(const Dynamics& dynamics) const override;
   double step(Dynamics& dynamics, State& state, double dt) override;
   void bonds_changed() override;
   Statistics statistics() const override;

@@ -101,6 +101,32 @@ TEST(BadInput, MissingConfigFile) {
       << outcome.output;
 }
 
+// An integrator option the scene cannot use fails before the output folder is touched: exit 2,
+// the key path, and an earlier run's output still in place (clear_previous_output would have
+// removed it; before Integrator::check it failed in the first step, after the first frame).
+TEST(BadInput, IntegratorOptionsFailBeforeAnythingIsWritten) {
+  const auto dir = test::scratch_dir("integrator_check");
+  const auto config = dir / "scene.yaml";
+  test::write_file(config, scene(kBox, ", model: paper"));
+  const std::pair<std::string, std::string> cases[] = {
+      {"--set integrator.type=petsc_newton",
+       "scene.yaml: integrator.type: material.model 'paper' provides no stiffness"},
+      {"--set integrator.type=arkode --set integrator.method=SDIRK_2_1_2",
+       "scene.yaml: integrator.method: 'SDIRK_2_1_2' is implicit, and material.model 'paper'"}};
+  for (const auto& [args, expected] : cases) {
+    const auto out = dir / "out";
+    std::filesystem::create_directories(out);
+    test::write_file(out / "probes.csv", "an earlier run's probes\n");
+    const auto outcome =
+        test::run_fissure("run " + config.string() + " --out " + out.string() + " " + args);
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+    EXPECT_NE(outcome.output.find(expected), std::string::npos) << outcome.output;
+    EXPECT_EQ(test::slurp(out / "probes.csv"), "an earlier run's probes\n");
+    EXPECT_FALSE(std::filesystem::exists(out / "particles.pvd")) << args;
+    EXPECT_FALSE(std::filesystem::exists(out / "summary.json")) << args;
+  }
+}
+
 // dt far above the stable step with the energy-growth check off: the run stops at the first
 // non-finite state with step, time and particle, exit code 3, and the probes and frames written
 // so far stay on disk (the safety net behind the energy check, tests/stability/).
