@@ -398,8 +398,12 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
     r.fail("integrator.preconditioner",
            "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "
            "majoriser");
+  // arkode: off unless asked for; CG with the stale factor cost more than refactorizing at each
+  // γ change on the bar swing at 857 and 7,761 particles (docs/integrators.md).
   if (node["reuse_factor"])
     s.reuse_factor = r.boolean(node["reuse_factor"], "integrator.reuse_factor");
+  else if (s.type == "arkode")
+    s.reuse_factor = false;
   if (node["refresh_contraction"]) {
     s.refresh_contraction =
         r.positive(node["refresh_contraction"], "integrator.refresh_contraction");

@@ -117,6 +117,12 @@ TEST(Config, NewtonSolverKeys) {
       {"integrator.type=arkode", "integrator.reuse_factor=false", "integrator.refresh_krylov=7"});
   EXPECT_FALSE(a.integrator.reuse_factor);
   EXPECT_EQ(a.integrator.refresh_krylov, 7);
+  // arkode's reuse is opt-in (it did not pay where measured); petsc_newton's is on (above).
+  EXPECT_FALSE(
+      parse_config(kMinimal, "scene.yaml", {"integrator.type=arkode"}).integrator.reuse_factor);
+  EXPECT_TRUE(parse_config(kMinimal, "scene.yaml",
+                           {"integrator.type=arkode", "integrator.reuse_factor=true"})
+                  .integrator.reuse_factor);
   const std::string explicit_type = error_of(kMinimal, {"integrator.reuse_factor=false"});
   EXPECT_NE(explicit_type.find("is an option of petsc_newton and arkode"), std::string::npos)
       << explicit_type;
