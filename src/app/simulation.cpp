@@ -18,8 +18,8 @@
 #include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/probes_csv.hpp"
+#include "io/surface_writer.hpp"
 #include "io/vtu_writer.hpp"
-#include "mesh/surface_writer.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 

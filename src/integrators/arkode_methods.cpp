@@ -1,7 +1,7 @@
 #include "integrators/arkode_methods.hpp"
 
 #include "core/error.hpp"
-#include "scene/yaml_reader.hpp"
+#include "scene/unknown_choice.hpp"
 
 namespace fissure {
 

@@ -1,4 +1,4 @@
-#include "render/render_settings.hpp"
+#include "scene/render_settings.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
