@@ -19,8 +19,8 @@
 #include "integrators/integrator.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/probes_csv.hpp"
+#include "io/surface_writer.hpp"
 #include "io/vtu_writer.hpp"
-#include "mesh/surface_writer.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "fracture/bond_breaking.hpp"
-#include "mesh/embedded_mesh.hpp"
+#include "fracture/embedded_mesh.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 

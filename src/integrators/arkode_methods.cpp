@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "scene/yaml_reader.hpp"
+#include "scene/unknown_choice.hpp"
 
 namespace fissure {
 

@@ -7,7 +7,7 @@
 #include "integrators/petsc_newton.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "integrators/velocity_verlet.hpp"
-#include "scene/yaml_reader.hpp"
+#include "scene/unknown_choice.hpp"
 
 namespace fissure {
 

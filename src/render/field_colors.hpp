@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "render/vtu_reader.hpp"
+#include "io/vtu_reader.hpp"
 
 namespace fissure {
 

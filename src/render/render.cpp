@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/external_program.hpp"
+#include "io/vtu_reader.hpp"
 #include "mesh/surface_formats.hpp"
-#include "render/external_program.hpp"
 #include "render/field_colors.hpp"
 #include "render/frames.hpp"
 #include "render/pov_writer.hpp"
-#include "render/vtu_reader.hpp"
 
 namespace fissure {
 

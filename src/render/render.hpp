@@ -4,7 +4,7 @@
 // --out names.
 #include <string>
 
-#include "render/render_settings.hpp"
+#include "scene/render_settings.hpp"
 
 namespace fissure {
 

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "scene/config_file.hpp"
+#include "scene/render_settings_reader.hpp"
 #include "scene/yaml_reader.hpp"
 
 namespace fissure {

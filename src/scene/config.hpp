@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "render/render_settings.hpp"
+#include "scene/render_settings.hpp"
 
 namespace fissure {
 

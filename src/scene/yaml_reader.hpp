@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/unknown_choice.hpp"
+
 namespace fissure {
 
 class YamlReader {
@@ -33,14 +35,6 @@ class YamlReader {
 
 // Joins a key path: join("bodies[0]", "material") == "bodies[0].material".
 std::string join(const std::string& path, const std::string& key);
-
-// The closest of `candidates` to `word` by edit distance, or "" if none is close.
-std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
-
-// "unknown <what> '<value>'; did you mean '<nearest>'? (valid: a, b, …)" for a value that is not
-// one of `valid`.
-std::string unknown_choice(const std::string& what, const std::string& value,
-                           const std::vector<std::string>& valid);
 
 // Applies "a.b[0].c=value" (value parsed as YAML) to `root`; `file` names errors.
 void apply_override(YAML::Node& root, const std::string& assignment, const std::string& file);

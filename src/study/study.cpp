@@ -12,12 +12,12 @@
 #include "app/simulation.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/external_program.hpp"
 #include "model/model.hpp"
-#include "render/external_program.hpp"
 #include "scene/config.hpp"
 #include "scene/scene.hpp"
+#include "scene/study_config.hpp"
 #include "study/plot_script.hpp"
-#include "study/study_config.hpp"
 #include "study/study_errors.hpp"
 
 namespace fissure {

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "render/vtu_reader.hpp"
+#include "io/vtu_reader.hpp"
 
 namespace fissure {
 

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "app/run_fissure.hpp"
-#include "render/external_program.hpp"
+#include "io/external_program.hpp"
 #include "support/png_pixels.hpp"
 
 namespace fissure {

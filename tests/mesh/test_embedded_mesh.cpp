@@ -4,8 +4,8 @@
 
 #include <string>
 
+#include "fracture/embedded_mesh.hpp"
 #include "fracture/post_step.hpp"
-#include "mesh/embedded_mesh.hpp"
 #include "model/model.hpp"
 #include "split_fixtures.hpp"
 

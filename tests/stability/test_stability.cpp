@@ -8,8 +8,8 @@
 
 #include <cmath>
 
+#include "io/vtu_reader.hpp"
 #include "model/model.hpp"
-#include "render/vtu_reader.hpp"
 #include "stability/stability_case.hpp"
 #include "support/csv.hpp"
 

@@ -1,5 +1,3 @@
-#include "render/render_settings.hpp"
-
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -7,7 +5,7 @@
 #include <cmath>
 
 #include "scene/config.hpp"
-#include "scene/yaml_reader.hpp"
+#include "scene/render_settings_reader.hpp"
 
 namespace fissure {
 

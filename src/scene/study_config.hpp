@@ -1,8 +1,6 @@
 #pragma once
 // A work–precision study file (fissure study STUDY.yaml; docs/studies.md): a scene, a reference,
 // and integrator configurations each swept over time steps or tolerances.
-#include <yaml-cpp/yaml.h>
-
 #include <string>
 #include <vector>
 

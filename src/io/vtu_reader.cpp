@@ -1,4 +1,4 @@
-#include "render/vtu_reader.hpp"
+#include "io/vtu_reader.hpp"
 
 #include <fmt/format.h>
 

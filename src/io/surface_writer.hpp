@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "fracture/embedded_mesh.hpp"
 #include "io/vtu_writer.hpp"
-#include "mesh/embedded_mesh.hpp"
 
 namespace fissure {
 

@@ -1,4 +1,4 @@
-#include "render/external_program.hpp"
+#include "io/external_program.hpp"
 
 #include <fcntl.h>
 #include <sys/wait.h>

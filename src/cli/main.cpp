@@ -13,10 +13,10 @@
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
 #include "render/render.hpp"
-#include "render/render_settings.hpp"
 #include "scene/config.hpp"
+#include "scene/render_settings.hpp"
+#include "scene/study_config.hpp"
 #include "study/study.hpp"
-#include "study/study_config.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{

@@ -1,4 +1,4 @@
-#include "mesh/embedded_mesh.hpp"
+#include "fracture/embedded_mesh.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "study/study_config.hpp"
+#include "scene/study_config.hpp"
 
 #include <fmt/format.h>
 

@@ -5,13 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace YAML {
-class Node;
-}
-
 namespace fissure {
-
-class YamlReader;
 
 struct RenderSettings {
   std::string field = "damage";  // damage, velocity, displacement or dilatation
@@ -28,9 +22,6 @@ struct RenderSettings {
   double fps = 10;                // animation frames per second
   std::string show = "auto";      // auto (surface if written, else particles), particles, surface
 };
-
-// Reads the `render:` map of a scene file.
-RenderSettings read_render_settings(const YamlReader& r, const YAML::Node& node);
 
 // The settings for `fissure render`: the `render:` block of `config_path` when one is given
 // (with `overrides` applied to the whole scene file), else the defaults with `overrides`, which

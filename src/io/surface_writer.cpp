@@ -1,4 +1,4 @@
-#include "mesh/surface_writer.hpp"
+#include "io/surface_writer.hpp"
 
 #include <fmt/format.h>
 
