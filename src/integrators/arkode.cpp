@@ -5,6 +5,7 @@
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <exception>
 
 #include "core/error.hpp"
@@ -13,12 +14,17 @@
 namespace fissure {
 
 struct Arkode::Solver {
-  explicit Solver(Dynamics& d) : dynamics(d) { SUNContext_Create(nullptr, &context); }
+  explicit Solver(Dynamics& d) : dynamics(d) {
+    if (SUNContext_Create(nullptr, &context) != 0)
+      throw RunError("SUNDIALS: SUNContext_Create failed");
+  }
   ~Solver() {
     ARKStepFree(&memory);
-    if (linear_solver) SUNLinSolFree(linear_solver);
+    if (linear_solver && SUNLinSolFree(linear_solver) != 0)
+      std::fprintf(stderr, "warning: SUNDIALS: SUNLinSolFree failed\n");
     N_VDestroy(u);
-    SUNContext_Free(&context);
+    if (SUNContext_Free(&context) != 0)
+      std::fprintf(stderr, "warning: SUNDIALS: SUNContext_Free failed\n");
   }
   Dynamics& dynamics;
   SUNContext context = nullptr;
@@ -85,6 +91,7 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
     solver_ = std::make_unique<Solver>(dynamics);
     Solver& s = *solver_;
     s.u = N_VNew_Serial(static_cast<sunindextype>(2 * n), s.context);
+    if (!s.u) throw RunError("SUNDIALS: N_VNew_Serial failed");
     s.origin = state.position;
     s.position.resize(n);
     using K = ArkodeMethod::Kind;
@@ -118,7 +125,7 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
       if (s.implicit_rhs) {
         s.reduced = std::make_unique<ReducedNewtonSystem>(
             dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov);
-        s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get());
+        s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get(), &s.error);
         arkode_check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr),
                      "ARKStepSetLinearSolver");
         // A projected or stale tangent makes Newton converge linearly: allow more than the

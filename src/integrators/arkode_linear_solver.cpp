@@ -236,33 +236,43 @@ void ReducedNewtonSystem::append_statistics(Statistics& stats) const {
 
 namespace {
 
-ReducedNewtonSystem* system_of(SUNLinearSolver S) {
-  return static_cast<ReducedNewtonSystem*>(S->content);
-}
+// What the SUNLinearSolver carries: the system, and where an exception thrown in a solve is kept
+// for Arkode::step to rethrow with its message (ARKODE itself only sees a failure code).
+struct Content {
+  ReducedNewtonSystem* system;
+  std::exception_ptr* error;
+};
+
+Content& content_of(SUNLinearSolver S) { return *static_cast<Content*>(S->content); }
 
 SUNLinearSolver_Type get_type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
 SUNLinearSolver_ID get_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
 
 int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype tol) {
+  Content& c = content_of(S);
   try {
-    system_of(S)->solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x), tol);
+    c.system->solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x), tol);
     return 0;
   } catch (...) {
+    *c.error = std::current_exception();
     return SUNLS_PACKAGE_FAIL_UNREC;
   }
 }
 
 int free_solver(SUNLinearSolver S) {
+  delete &content_of(S);
+  S->content = nullptr;
   SUNLinSolFreeEmpty(S);
   return 0;
 }
 
 }  // namespace
 
-SUNLinearSolver make_reduced_linear_solver(SUNContext context, ReducedNewtonSystem* system) {
+SUNLinearSolver make_reduced_linear_solver(SUNContext context, ReducedNewtonSystem* system,
+                                           std::exception_ptr* error) {
   SUNLinearSolver S = SUNLinSolNewEmpty(context);
   if (!S) throw RunError("ARKODE: SUNLinSolNewEmpty failed");
-  S->content = system;
+  S->content = new Content{system, error};
   S->ops->gettype = get_type;
   S->ops->getid = get_id;
   // no setup: ARKODE 6.4 never calls a matrix-embedded solver's; solve keeps the factor current

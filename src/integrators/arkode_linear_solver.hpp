@@ -17,6 +17,7 @@
 // S is refactorized whenever γ changes, with the K of the last assembly.
 #include <sundials/sundials_linearsolver.h>
 
+#include <exception>
 #include <vector>
 
 #include "integrators/dynamics.hpp"
@@ -104,7 +105,9 @@ class ReducedNewtonSystem {
   std::vector<double> scratch_, rhs_, held_step_, coupling_;
 };
 
-// Wraps `system` (not owned) as a matrix-embedded SUNLinearSolver.
-SUNLinearSolver make_reduced_linear_solver(SUNContext context, ReducedNewtonSystem* system);
+// Wraps `system` (not owned) as a matrix-embedded SUNLinearSolver. An exception a solve throws
+// is stored in *error (ARKODE gets SUNLS_PACKAGE_FAIL_UNREC) for the caller to rethrow.
+SUNLinearSolver make_reduced_linear_solver(SUNContext context, ReducedNewtonSystem* system,
+                                           std::exception_ptr* error);
 
 }  // namespace fissure

@@ -95,10 +95,10 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
 }
 
 NewtonPreconditioner::~NewtonPreconditioner() {
-  VecDestroy(&component_);
-  VecDestroy(&component_solution_);
-  PCDestroy(&pc_);
-  MatDestroy(&petsc_matrix_);
+  petsc_release(VecDestroy(&component_), "VecDestroy");
+  petsc_release(VecDestroy(&component_solution_), "VecDestroy");
+  petsc_release(PCDestroy(&pc_), "PCDestroy");
+  petsc_release(MatDestroy(&petsc_matrix_), "MatDestroy");
 }
 
 void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int block_size) {
@@ -155,8 +155,8 @@ void NewtonPreconditioner::refresh(const double* z) {
     petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, z, &coordinates), "VecCreateSeq");
     petsc_check(MatNullSpaceCreateRigidBody(coordinates, &modes), "MatNullSpaceCreateRigidBody");
     petsc_check(MatSetNearNullSpace(petsc_matrix_, modes), "MatSetNearNullSpace");
-    MatNullSpaceDestroy(&modes);
-    VecDestroy(&coordinates);
+    petsc_check(MatNullSpaceDestroy(&modes), "MatNullSpaceDestroy");
+    petsc_check(VecDestroy(&coordinates), "VecDestroy");
   }
   // CHOLMOD reports a matrix that is not positive definite as a failed factorization. BLAS
   // threads help the factorization's dense blocks, not the solves (blas_threads.hpp).
@@ -204,9 +204,10 @@ void NewtonPreconditioner::apply(Vec r, Vec x) {
 }
 
 void NewtonPreconditioner::view(PetscViewer viewer) const {
-  PetscViewerASCIIPrintf(viewer, "Fissure preconditioner: %s (refreshed %ld times)\n",
-                         preconditioner_name(kind_), factorizations);
-  if (factorizations > 0) PCView(pc_, viewer);
+  petsc_check(PetscViewerASCIIPrintf(viewer, "Fissure preconditioner: %s (refreshed %ld times)\n",
+                                     preconditioner_name(kind_), factorizations),
+              "PetscViewerASCIIPrintf");
+  if (factorizations > 0) petsc_check(PCView(pc_, viewer), "PCView");
 }
 
 }  // namespace fissure

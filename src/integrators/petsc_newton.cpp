@@ -27,12 +27,12 @@ struct PetscNewton::Solver {
   Solver(Dynamics& dynamics, const IntegratorSettings& settings)
       : system(dynamics, settings.tangent), scheme(settings.scheme, settings.rho_infinity) {}
   ~Solver() {
-    SNESDestroy(&snes);
-    MatDestroy(&matrix);
-    VecDestroy(&unknowns);
-    VecDestroy(&residual);
+    petsc_release(SNESDestroy(&snes), "SNESDestroy");
+    petsc_release(MatDestroy(&matrix), "MatDestroy");
+    petsc_release(VecDestroy(&unknowns), "VecDestroy");
+    petsc_release(VecDestroy(&residual), "VecDestroy");
     preconditioner.reset();
-    PetscOptionsDestroy(&options);
+    petsc_release(PetscOptionsDestroy(&options), "PetscOptionsDestroy");
   }
 
   NewtonSystem system;
@@ -193,8 +193,8 @@ PetscErrorCode apply_preconditioner(PC pc, Vec r, Vec x) {
 PetscErrorCode view_preconditioner(PC pc, PetscViewer viewer) {
   void* context;
   PetscCall(PCShellGetContext(pc, &context));
-  static_cast<Solver*>(context)->preconditioner->view(viewer);
-  return 0;
+  auto* s = static_cast<Solver*>(context);
+  return guarded(s, [&] { s->preconditioner->view(viewer); });
 }
 
 // PETSc's tests (-snes_rtol, -snes_atol, ... as the user set them), and convergence at the
@@ -343,7 +343,8 @@ void warn_unused_options(Solver& s, const std::string& file) {
   for (PetscInt k = 0; k < count; ++k)
     fmt::print(stderr, "warning: {}: integrator.petsc_options: PETSc did not use -{}\n", file,
                names[k]);
-  PetscOptionsLeftRestore(s.options, &count, &names, &values);
+  petsc_check(PetscOptionsLeftRestore(s.options, &count, &names, &values),
+              "PetscOptionsLeftRestore");
 }
 
 }  // namespace

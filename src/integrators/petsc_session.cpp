@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/error.hpp"
@@ -10,7 +11,7 @@ namespace fissure {
 
 void ensure_petsc() {
   PetscBool initialized = PETSC_FALSE;
-  PetscInitialized(&initialized);
+  petsc_check(PetscInitialized(&initialized), "PetscInitialized");
   if (initialized) return;
   petsc_check(PetscInitializeNoArguments(), "initialisation");
   // Fissure reports errors itself; PETSc must not catch the process's signals.
@@ -22,8 +23,12 @@ void ensure_petsc() {
 void petsc_check(PetscErrorCode code, const char* what) {
   if (code == 0) return;
   const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
+  if (PetscErrorMessage(code, &text, nullptr) != 0) text = nullptr;
   throw RunError(fmt::format("PETSc: {} failed: {} (error {})", what, text ? text : "", code));
+}
+
+void petsc_release(PetscErrorCode code, const char* what) noexcept {
+  if (code != 0) std::fprintf(stderr, "warning: PETSc: %s failed (error %d)\n", what, int(code));
 }
 
 }  // namespace fissure

@@ -8,5 +8,7 @@ namespace fissure {
 void ensure_petsc();
 // Throws RunError naming `what` when a PETSc call failed.
 void petsc_check(PetscErrorCode code, const char* what);
+// For destructors, which must not throw: a failed call is reported on stderr.
+void petsc_release(PetscErrorCode code, const char* what) noexcept;
 
 }  // namespace fissure
