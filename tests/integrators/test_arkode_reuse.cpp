@@ -12,6 +12,7 @@
 #include "integrators/arkode.hpp"
 #include "integrators/arkode_linear_solver.hpp"
 #include "linear/sparse_symmetric.hpp"
+#include "support/integrator_statistics.hpp"
 #include "support/vibration.hpp"
 
 namespace fissure {
@@ -25,30 +26,6 @@ IntegratorSettings adaptive(const char* method, bool reuse, double rtol = 1e-6) 
   s.atol = 1e-3 * rtol;
   s.reuse_factor = reuse;
   return s;
-}
-
-double statistic(const Integrator& integrator, const std::string& name) {
-  for (const auto& [key, value] : integrator.statistics())
-    if (key == name) return value;
-  ADD_FAILURE() << "no statistic " << name;
-  return -1;
-}
-
-void print_statistics(const char* label, const Integrator& integrator) {
-  std::printf("%s:", label);
-  for (const auto& [name, value] : integrator.statistics())
-    if (value != 0) std::printf(" %s %.0f", name.c_str(), value);
-  std::printf("\n");
-}
-
-// Every factorization after the first is one refresh, counted under one reason.
-double refreshes(const Integrator& integrator) {
-  double sum = 0;
-  for (const char* reason :
-       {"refreshes_step_size", "refreshes_bonds_broken", "refreshes_convergence",
-        "refreshes_fallback", "refreshes_every_iteration"})
-    sum += statistic(integrator, reason);
-  return sum;
 }
 
 // Adaptive steps from the vibration's start to `end`.
@@ -84,14 +61,15 @@ TEST(ArkodeFactorReuse, GivesTheTrajectoryOfRefactorizingAtEveryGammaChange) {
         "%s: reuse vs refactorizing at every gamma change: max |dy| = %.2e (%.3f of the "
         "bound)\n",
         method, difference, difference / bound);
-    print_statistics("  reuse", *reused);
-    print_statistics("  every gamma", *every);
+    test::print_statistics("  reuse", *reused);
+    test::print_statistics("  every gamma", *every);
     EXPECT_LT(difference, bound) << method;
-    EXPECT_GT(statistic(*reused, "krylov_iterations"), 0) << method;
-    EXPECT_GT(statistic(*reused, "tangent_products"), 0) << method;
-    EXPECT_EQ(statistic(*reused, "factorizations"), 1 + refreshes(*reused)) << method;
-    EXPECT_EQ(statistic(*every, "factorizations"), 1 + refreshes(*every)) << method;
-    EXPECT_LT(statistic(*reused, "factorizations"), 0.2 * statistic(*every, "factorizations"))
+    EXPECT_GT(test::statistic(*reused, "krylov_iterations"), 0) << method;
+    EXPECT_GT(test::statistic(*reused, "tangent_products"), 0) << method;
+    EXPECT_EQ(test::statistic(*reused, "factorizations"), 1 + test::refreshes(*reused)) << method;
+    EXPECT_EQ(test::statistic(*every, "factorizations"), 1 + test::refreshes(*every)) << method;
+    EXPECT_LT(test::statistic(*reused, "factorizations"),
+              0.2 * test::statistic(*every, "factorizations"))
         << method;
   }
 }
@@ -214,7 +192,7 @@ TEST(ArkodeFactorReuse, RefreshesWhenBondsBreak) {
   auto v = test::make_vibration();
   auto integrator = make_integrator(adaptive("ARK436L2SA", true), "test");
   State s = run(*v, *integrator, v->initial, 0.5 * kEnd);
-  EXPECT_EQ(statistic(*integrator, "refreshes_bonds_broken"), 0);
+  EXPECT_EQ(test::statistic(*integrator, "refreshes_bonds_broken"), 0);
   const Families& f = v->scene.families;
   for (int b = f.offsets[0]; b < f.offsets[1]; ++b) {
     v->model->break_bond(0, b);
@@ -222,9 +200,9 @@ TEST(ArkodeFactorReuse, RefreshesWhenBondsBreak) {
   }
   integrator->bonds_changed();
   s = run(*v, *integrator, s, kEnd);
-  print_statistics("bonds broken", *integrator);
-  EXPECT_EQ(statistic(*integrator, "refreshes_bonds_broken"), 1);
-  EXPECT_EQ(statistic(*integrator, "factorizations"), 1 + refreshes(*integrator));
+  test::print_statistics("bonds broken", *integrator);
+  EXPECT_EQ(test::statistic(*integrator, "refreshes_bonds_broken"), 1);
+  EXPECT_EQ(test::statistic(*integrator, "factorizations"), 1 + test::refreshes(*integrator));
 }
 
 // refresh_krylov: 1 lets no CG solve take a second iteration without a refresh; the default 40
@@ -237,11 +215,11 @@ TEST(ArkodeFactorReuse, RefreshesWhenCgPassesTheLimit) {
   auto gentle = make_integrator(adaptive("ARK436L2SA", true), "test");
   run(*v, *limited, v->initial, kEnd);
   run(*v, *gentle, v->initial, kEnd);
-  print_statistics("refresh_krylov 1", *limited);
-  print_statistics("refresh_krylov 40", *gentle);
-  EXPECT_GT(statistic(*limited, "refreshes_convergence"), 0);
-  EXPECT_EQ(statistic(*gentle, "refreshes_convergence"), 0);
-  EXPECT_EQ(statistic(*limited, "factorizations"), 1 + refreshes(*limited));
+  test::print_statistics("refresh_krylov 1", *limited);
+  test::print_statistics("refresh_krylov 40", *gentle);
+  EXPECT_GT(test::statistic(*limited, "refreshes_convergence"), 0);
+  EXPECT_EQ(test::statistic(*gentle, "refreshes_convergence"), 0);
+  EXPECT_EQ(test::statistic(*limited, "factorizations"), 1 + test::refreshes(*limited));
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "integrators/petsc_newton.hpp"
+#include "support/integrator_statistics.hpp"
 #include "support/vibration.hpp"
 
 namespace fissure {
@@ -21,20 +22,6 @@ IntegratorSettings newton(const std::string& scheme) {
   s.scheme = scheme;
   s.petsc_options = "-snes_rtol 1e-10 -snes_stol 1e-16";
   return s;
-}
-
-double statistic(const Integrator& integrator, const std::string& name) {
-  for (const auto& [key, value] : integrator.statistics())
-    if (key == name) return value;
-  ADD_FAILURE() << "no statistic " << name;
-  return -1;
-}
-
-void print_statistics(const char* label, const Integrator& integrator) {
-  std::printf("%s:", label);
-  for (const auto& [name, value] : integrator.statistics())
-    if (value != 0) std::printf(" %s %.0f", name.c_str(), value);
-  std::printf("\n");
 }
 
 struct Trajectory {
@@ -71,29 +58,19 @@ TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
     const double difference = test::max_difference(reused.position, every.position);
     std::printf("%s: reuse vs fresh factor: max |dy| = %.2e of the motion\n", scheme,
                 difference / reach(*v, every.position));
-    print_statistics("  reuse", *reused.integrator);
-    print_statistics("  fresh", *every.integrator);
+    test::print_statistics("  reuse", *reused.integrator);
+    test::print_statistics("  fresh", *every.integrator);
     EXPECT_LT(difference, 1e-7 * reach(*v, every.position)) << scheme;
-    EXPECT_EQ(statistic(*every.integrator, "factorizations"),
-              statistic(*every.integrator, "newton_iterations"))
+    EXPECT_EQ(test::statistic(*every.integrator, "factorizations"),
+              test::statistic(*every.integrator, "newton_iterations"))
         << scheme;
     // Reuse that refreshed at every iteration would match the fresh count; measured: 2 of 48
     // (backward Euler), 41 of 148 (Newmark, whose undamped high modes slow modified Newton),
     // 2 of 557 (SDIRK4).
-    EXPECT_LT(statistic(*reused.integrator, "factorizations"),
-              0.5 * statistic(*every.integrator, "factorizations"))
+    EXPECT_LT(test::statistic(*reused.integrator, "factorizations"),
+              0.5 * test::statistic(*every.integrator, "factorizations"))
         << scheme;
   }
-}
-
-// Every factorization after the first is one refresh, counted under one reason.
-double refreshes(const Integrator& integrator) {
-  double sum = 0;
-  for (const char* reason :
-       {"refreshes_step_size", "refreshes_bonds_broken", "refreshes_convergence",
-        "refreshes_fallback", "refreshes_every_iteration"})
-    sum += statistic(integrator, reason);
-  return sum;
 }
 
 // A new dt changes A: the factor is refreshed once at the change, and counted.
@@ -105,14 +82,14 @@ TEST(FactorReuse, RefreshesWhenTheStepSizeChanges) {
   // A step that differs only by the round-off of end − t (the run loop's last step) keeps the
   // factor: A moves by 1e-15 of itself.
   integrator->step(*v->dynamics, s, 10 * v->stable_dt * (1 - 4e-16));
-  EXPECT_EQ(statistic(*integrator, "refreshes_step_size"), 0);
-  const double before = statistic(*integrator, "factorizations");
-  EXPECT_EQ(before, 1 + refreshes(*integrator));
+  EXPECT_EQ(test::statistic(*integrator, "refreshes_step_size"), 0);
+  const double before = test::statistic(*integrator, "factorizations");
+  EXPECT_EQ(before, 1 + test::refreshes(*integrator));
   for (int k = 0; k < 5; ++k) integrator->step(*v->dynamics, s, 5 * v->stable_dt);
-  print_statistics("dt change", *integrator);
-  EXPECT_EQ(statistic(*integrator, "refreshes_step_size"), 1);
-  EXPECT_GE(statistic(*integrator, "factorizations"), before + 1);
-  EXPECT_EQ(statistic(*integrator, "factorizations"), 1 + refreshes(*integrator));
+  test::print_statistics("dt change", *integrator);
+  EXPECT_EQ(test::statistic(*integrator, "refreshes_step_size"), 1);
+  EXPECT_GE(test::statistic(*integrator, "factorizations"), before + 1);
+  EXPECT_EQ(test::statistic(*integrator, "factorizations"), 1 + test::refreshes(*integrator));
 }
 
 // Bonds broken between steps, the body at rest: the factor is refreshed, and the kept force
@@ -144,8 +121,8 @@ TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
     integrator->step(*v->dynamics, s, dt);
     after->step(*w->dynamics, t, dt);
   }
-  print_statistics("bonds broken", *integrator);
-  EXPECT_EQ(statistic(*integrator, "refreshes_bonds_broken"), 1);
+  test::print_statistics("bonds broken", *integrator);
+  EXPECT_EQ(test::statistic(*integrator, "refreshes_bonds_broken"), 1);
   const double difference = test::max_difference(s.position, t.position);
   std::printf("after breaking: max |dy| to a new integrator = %.2e of the motion\n",
               difference / reach(*v, t.position));
@@ -166,16 +143,17 @@ TEST(FactorReuse, RefreshesWhenIterationsDegrade) {
   strict.refresh_contraction = 0.25;
   strict.refresh_iterations = 1;
   const Trajectory iterations = simulate(*v, strict, steps, dt);
-  print_statistics("defaults", *gentle.integrator);
-  print_statistics("contraction 1e-14", *contraction.integrator);
-  print_statistics("iterations 1", *iterations.integrator);
+  test::print_statistics("defaults", *gentle.integrator);
+  test::print_statistics("contraction 1e-14", *contraction.integrator);
+  test::print_statistics("iterations 1", *iterations.integrator);
   for (const Trajectory* t : {&contraction, &iterations}) {
-    const double its = statistic(*t->integrator, "newton_iterations");
-    EXPECT_EQ(statistic(*t->integrator, "refreshes_convergence"), its - steps);
-    EXPECT_EQ(statistic(*t->integrator, "factorizations"), 1 + refreshes(*t->integrator));
+    const double its = test::statistic(*t->integrator, "newton_iterations");
+    EXPECT_EQ(test::statistic(*t->integrator, "refreshes_convergence"), its - steps);
+    EXPECT_EQ(test::statistic(*t->integrator, "factorizations"),
+              1 + test::refreshes(*t->integrator));
   }
-  EXPECT_LT(statistic(*gentle.integrator, "refreshes_convergence"),
-            0.5 * statistic(*iterations.integrator, "refreshes_convergence"));
+  EXPECT_LT(test::statistic(*gentle.integrator, "refreshes_convergence"),
+            0.5 * test::statistic(*iterations.integrator, "refreshes_convergence"));
 }
 
 // Every preconditioner and Krylov method solves the same steps: the same trajectory within the
@@ -204,10 +182,10 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
     const double difference = test::max_difference(r.position, reference.position);
     std::printf("%s: max |dy| = %.2e of the motion\n", c.label,
                 difference / reach(*v, reference.position));
-    print_statistics("  ", *r.integrator);
+    test::print_statistics("  ", *r.integrator);
     EXPECT_LT(difference, 1e-7 * reach(*v, reference.position)) << c.label;
-    EXPECT_GT(statistic(*r.integrator, "krylov_iterations"), 0) << c.label;
-    EXPECT_GT(statistic(*r.integrator, "tangent_products"), 0) << c.label;
+    EXPECT_GT(test::statistic(*r.integrator, "krylov_iterations"), 0) << c.label;
+    EXPECT_GT(test::statistic(*r.integrator, "tangent_products"), 0) << c.label;
   }
 }
 
