@@ -154,7 +154,8 @@ struct IntegratorSettings {
   // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
   enum class Krylov { automatic, none, cg, gmres };
   Krylov krylov = Krylov::automatic;
-  // petsc_newton and arkode (reuse_factor, refresh_krylov; docs/integrators.md)
+  // petsc_newton and arkode (reuse_factor, refresh_krylov; docs/integrators.md). A config that
+  // does not set reuse_factor gets false for arkode (read_integrator: it did not pay there).
   bool reuse_factor = true;  // false: refactorize at every Newton iteration (arkode: γ change)
   double refresh_contraction = 0.25;  // refresh when |r_k+1| / |r_k| exceeds this
   int refresh_iterations = 6;         // ... or a step's Newton iterations since the refresh do
