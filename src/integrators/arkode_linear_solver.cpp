@@ -102,7 +102,7 @@ void ReducedNewtonSystem::factorize(double gamma) {
 }
 
 bool ReducedNewtonSystem::same_gamma(double gamma) const {
-  return std::abs(gamma - factor_gamma_) <= 1e-12 * factor_gamma_;
+  return same_step_coefficient(gamma, factor_gamma_);
 }
 
 bool ReducedNewtonSystem::fresh(double gamma) const {

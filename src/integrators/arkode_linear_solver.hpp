@@ -9,12 +9,13 @@
 // the exact one does not give an SPD matrix (model.hpp). Held particles have v̇ = 0: Δy = b_y + γ
 // b_v there, moved to the right-hand side.
 //
-// With reuse (integrator.reuse_factor, the default) the factor of S at one γ and one state
-// preconditions CG on (R) at the current γ, K applied matrix-free at the current stage's
-// prediction; it is refreshed (assembled and factorized at the current stage and γ, after which
-// one back-solve is exact) when CG needs more than integrator.refresh_krylov iterations or breaks
-// down, when bonds broke, and when the factorization is not SPD (then with K⁺). Without reuse,
-// S is refactorized whenever γ changes, with the K of the last assembly.
+// With reuse (integrator.reuse_factor: true; arkode's default is false, docs/integrators.md) the
+// factor of S at one γ and one state preconditions CG on (R) at the current γ, K applied
+// matrix-free at the current stage's prediction; it is refreshed (assembled and factorized at the
+// current stage and γ, after which one back-solve is exact) when CG needs more than
+// integrator.refresh_krylov iterations or breaks down, when bonds broke, and when the factorization
+// is not SPD (then with K⁺). Without reuse, S is refactorized whenever γ changes, with the K of the
+// last assembly.
 #include <sundials/sundials_linearsolver.h>
 
 #include <exception>
@@ -55,7 +56,7 @@ class ReducedNewtonSystem {
   // Factorizes S at gamma with the assembled K; where that is not SPD, assembles K⁺ at the
   // same point and factorizes again (a refresh for `fallback`).
   void factorize(double gamma);
-  bool same_gamma(double gamma) const;  // as the factor's, to round-off
+  bool same_gamma(double gamma) const;  // as the factor's (same_step_coefficient)
   // The factor is S itself: made in this stage, at this γ.
   bool fresh(double gamma) const;
   // rhs_ and held_step_ of (R) for b; the held particles' coupling −K Δy_held uses the

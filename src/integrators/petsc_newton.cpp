@@ -118,10 +118,7 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
 Solver::Refresh refresh_reason(Solver& s) {
   if (s.pending != Refreshes::none) return s.pending;
   if (!s.reuse) return Refreshes::every_iteration;
-  // A last step shortened only by the round-off of end − t changes A in its last digits: the
-  // factor stays an exact-enough Newton matrix (at 1e4 particles a refresh costs 100 solves).
-  if (std::abs(s.system.inertia() - s.factor_inertia) > 1e-6 * s.factor_inertia)
-    return Refreshes::step_size;
+  if (!same_step_coefficient(s.system.inertia(), s.factor_inertia)) return Refreshes::step_size;
   if (s.system.tangent() != s.factor_tangent) return Refreshes::fallback;
   if (!s.preconditioner->follows_the_state()) return Refreshes::none;
   const std::size_t k = s.norms.size();

@@ -3,10 +3,19 @@
 // under the same statistics names by petsc_newton and arkode (docs/integrators.md): the first
 // factorization is no refresh, so factorizations = 1 + the sum of the counts.
 #include <array>
+#include <cmath>
 
 #include "integrators/integrator.hpp"
 
 namespace fissure {
+
+// Whether a factor made for a step-size coefficient (petsc_newton's A, arkode's γ) still fits
+// `current`: a step shortened only by the round-off of end − t moves it in its last digits, and
+// a factor off by 1e-6 of itself is an exact-enough Newton matrix (a refresh of the two-hop
+// factor at 1e4 particles costs about 100 back-solves).
+inline bool same_step_coefficient(double current, double factored) {
+  return std::abs(current - factored) <= 1e-6 * factored;
+}
 
 struct Refreshes {
   enum Reason { none, first, step_size, bonds, convergence, fallback, every_iteration, reasons };
