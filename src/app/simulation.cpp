@@ -265,12 +265,14 @@ void Simulation::write_frame() {
     displacement[k] = state_.position[k] - scene_.particles.reference[k];
   const std::vector<double> undamaged(post_step_->damage() ? 0 : n, 0.0);
   const std::vector<double>& damage = post_step_->damage() ? *post_step_->damage() : undamaged;
+  std::vector<double> dilatation(n);
+  model_->dilatation(state_.position.data(), dilatation.data());
   const std::string file = fmt::format("particles_{:06d}.vtu", frame_++);
   write_particles_vtu(config_.output.dir + "/" + file, state_.position,
                       {{"displacement", 3, &displacement},
                        {"velocity", 3, &state_.velocity},
                        {"damage", 1, &damage},
-                       {"dilatation", 1, &model_->dilatation()}},
+                       {"dilatation", 1, &dilatation}},
                       &scene_.particles.body);
   pvd_->add(state_.time, file);
   frame_times_.push_back(state_.time);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "fracture/initial_cracks.hpp"
+#include "model/plastic_flow.hpp"
 
 namespace fissure {
 
@@ -77,8 +78,9 @@ std::size_t BondBreaking::find(const double* y) {
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
-  const std::vector<double>& plastic = model_.plastic_extension();
-  const bool plastic_bonds = !plastic.empty();
+  const PlasticFlow* plastic_flow = model_.plastic_flow();
+  const double* plastic = plastic_flow ? plastic_flow->plastic_extension().data() : nullptr;
+  const bool plastic_bonds = plastic != nullptr;
   std::size_t exceeded = 0;
   // s^ω_ij = s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19), against a threshold that grows with
   // damage as the paper's text asks ("continuously increasing the crack threshold as the material

@@ -1,6 +1,7 @@
 #include "fracture/post_step.hpp"
 
 #include "core/error.hpp"
+#include "model/plastic_flow.hpp"
 
 namespace fissure {
 
@@ -15,9 +16,10 @@ PostStep::PostStep(const Scene& scene, Model& model, bool measure_energy)
 
 bool PostStep::run(const double* y, const double* velocity, double dt) {
   ++calls_;
-  const bool measure_plastic = measure_energy_ && model_.plastic();
+  PlasticFlow* plastic_flow = model_.plastic_flow();
+  const bool measure_plastic = measure_energy_ && plastic_flow;
   double stored = measure_plastic ? model_.elastic_energy(y) : 0;
-  if (model_.update_plasticity(y) > 0 && measure_plastic) {
+  if (plastic_flow && plastic_flow->update_plasticity(y) > 0 && measure_plastic) {
     const double after = model_.elastic_energy(y);
     released_.plastic += stored - after;
     stored = after;

@@ -77,7 +77,7 @@ Arkode::Arkode(const IntegratorSettings& settings, const std::string& file)
 Arkode::~Arkode() = default;
 
 void Arkode::check(const Dynamics& dynamics) const {
-  if (method_.kind != ArkodeMethod::Kind::explicit_rk && !dynamics.model().has_stiffness())
+  if (method_.kind != ArkodeMethod::Kind::explicit_rk && !dynamics.model().stiffness())
     throw InputError(file_, "integrator.method",
                      fmt::format("'{}' is implicit, and material.model '{}' provides no "
                                  "stiffness; use material.model: lps or an explicit method",

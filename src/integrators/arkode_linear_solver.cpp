@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "integrators/arkode_methods.hpp"
 #include "linear/shifted_system.hpp"
+#include "model/stiffness.hpp"
 
 namespace fissure {
 
@@ -71,7 +72,7 @@ void ReducedNewtonSystem::refresh(Refreshes::Reason reason, double gamma) {
   pending_ = Refreshes::none;
   hold_at(stage_time_);
   assembled_at_ = predicted_;
-  dynamics_.model().assemble_tangent(assembled_at_.data(), stiffness_, false);
+  dynamics_.model().stiffness()->assemble_tangent(assembled_at_.data(), stiffness_, false);
   projected_ = false;
   factorize(gamma);
   factor_stage_ = stage_;
@@ -95,7 +96,7 @@ void ReducedNewtonSystem::factorize(double gamma) {
   } catch (const RunError&) {
     if (projected_) throw;
     ++refreshes_.count[Refreshes::fallback];
-    dynamics_.model().assemble_tangent(assembled_at_.data(), stiffness_, true);
+    dynamics_.model().stiffness()->assemble_tangent(assembled_at_.data(), stiffness_, true);
     projected_ = true;
     attempt();
   }
@@ -149,7 +150,7 @@ void ReducedNewtonSystem::reduced_rhs(const double* b, double gamma, bool matrix
     any_held = any_held || (fixed_[k] && held_step_[k] != 0);
   }
   if (any_held && matrix_free) {
-    dynamics_.model().apply_tangent(held_step_.data(), coupling_.data());
+    dynamics_.model().stiffness()->apply_tangent(held_step_.data(), coupling_.data());
     ++tangent_products_;
   } else if (any_held) {
     stiffness_.multiply(held_step_.data(), coupling_.data());
@@ -174,14 +175,14 @@ void ReducedNewtonSystem::expand(const double* b, double gamma, double* x) const
 
 void ReducedNewtonSystem::linearize_stage() {
   if (linearized_stage_ == stage_ && linearized_projected_ == projected_) return;
-  dynamics_.model().linearize(predicted_.data(), projected_);
+  dynamics_.model().stiffness()->linearize(predicted_.data(), projected_);
   linearized_stage_ = stage_;
   linearized_projected_ = projected_;
   ++linearizations_;
 }
 
 void ReducedNewtonSystem::apply_system(double gamma, const double* v, double* out) {
-  dynamics_.model().apply_tangent(v, out);
+  dynamics_.model().stiffness()->apply_tangent(v, out);
   ++tangent_products_;
   const double shift = (1 + gamma * dynamics_.damping()) / (gamma * gamma);
   for (std::size_t k = 0; k < mass_.size(); ++k)

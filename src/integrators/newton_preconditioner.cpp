@@ -11,6 +11,7 @@
 #include "integrators/petsc_session.hpp"
 #include "linear/blas_threads.hpp"
 #include "linear/shifted_system.hpp"
+#include "model/stiffness.hpp"
 
 namespace fissure {
 
@@ -116,24 +117,24 @@ void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int blo
 }
 
 void NewtonPreconditioner::refresh(const double* z) {
-  Model& model = system_.dynamics().model();
+  Stiffness& stiffness = *system_.dynamics().model().stiffness();  // check() made sure
   const double inertia = system_.inertia();
   switch (kind_) {
     case Kind::tangent:
       if (system_.tangent() == "majoriser")
-        model.assemble_majoriser(z, matrix_);
+        stiffness.assemble_majoriser(z, matrix_);
       else
-        model.assemble_tangent(z, matrix_, system_.tangent() == "projected");
+        stiffness.assemble_tangent(z, matrix_, system_.tangent() == "projected");
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::majoriser:
     case Kind::gamg:
-      model.assemble_majoriser(z, matrix_);
+      stiffness.assemble_majoriser(z, matrix_);
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::scalar:
       if (!scalar_assembled_) {
-        model.assemble_scalar_stiffness(scalar_stiffness_);
+        stiffness.assemble_scalar_stiffness(scalar_stiffness_);
         scalar_assembled_ = true;
       }
       matrix_.values = scalar_stiffness_.values;

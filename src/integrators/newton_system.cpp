@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "model/stiffness.hpp"
+
 namespace fissure {
 
 NewtonSystem::NewtonSystem(Dynamics& dynamics, const std::string& tangent)
@@ -96,12 +98,12 @@ void NewtonSystem::linearize(const double* z) {
 }
 
 void NewtonSystem::apply(const double* v, double* out) {
-  Model& model = dynamics_.model();
+  Stiffness& stiffness = *dynamics_.model().stiffness();  // check() made sure it is there
   if (!linearized_ || linearized_tangent_ != tangent_) {
     if (tangent_ == "majoriser")
-      model.assemble_majoriser(linearization_.data(), majoriser_);
+      stiffness.assemble_majoriser(linearization_.data(), majoriser_);
     else
-      model.linearize(linearization_.data(), tangent_ == "projected");
+      stiffness.linearize(linearization_.data(), tangent_ == "projected");
     linearized_ = true;
     linearized_tangent_ = tangent_;
     ++linearizations;
@@ -112,7 +114,7 @@ void NewtonSystem::apply(const double* v, double* out) {
   if (tangent_ == "majoriser")
     majoriser_.multiply(masked_.data(), out);
   else
-    model.apply_tangent(masked_.data(), out);
+    stiffness.apply_tangent(masked_.data(), out);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k)
     out[k] = fixed_[k] ? (inertia_ > 0 ? inertia_ * mass_[k] : 1.0) * v[k]

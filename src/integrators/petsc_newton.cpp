@@ -352,7 +352,7 @@ PetscNewton::PetscNewton(const IntegratorSettings& settings, const std::string& 
 PetscNewton::~PetscNewton() = default;
 
 void PetscNewton::check(const Dynamics& dynamics) const {
-  if (!dynamics.model().has_stiffness())
+  if (!dynamics.model().stiffness())
     throw InputError(file_, "integrator.type",
                      fmt::format("material.model '{}' provides no stiffness for petsc_newton; "
                                  "use material.model: lps",

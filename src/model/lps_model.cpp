@@ -189,6 +189,28 @@ double LpsModel::forces_and_energy(const double* y, double* f) {
   return total;
 }
 
+// θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped), summed as compute_dilatation sums it.
+void LpsModel::dilatation(const double* y, double* theta) const {
+  const int n = particles_.count();
+  const int* off = families_.offsets.data();
+  const int* nbr = families_.neighbors.data();
+  const double* xi = families_.reference_length.data();
+  const float* c = bond_weight_.data();
+  const double* V = particles_.volume.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+    double sum = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const int j = nbr[b];
+      const double* yj = y + 3 * j;
+      const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+      sum += c[b] * ((std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j]);
+    }
+    theta[i] = sum;
+  }
+}
+
 void LpsModel::update_dilatation(const double* y) {
   if (plastic_)
     compute_dilatation<true>(y);
@@ -230,7 +252,6 @@ void LpsModel::energy_density(const double* y, double* w) {
 // (Eq 14) by Δe^p = (A_dev − A^c sign A_dev)/(4ωb), the consistent step (the paper's 1/(2b)
 // over-relaxes by 2ω), and e^p is capped at γ = max_plastic_stretch |ξ| (Eq 16).
 std::size_t LpsModel::update_plasticity(const double* y) {
-  if (!plastic_) return 0;
   compute_dilatation<true>(y);
   const int n = particles_.count();
   const auto& off = families_.offsets;

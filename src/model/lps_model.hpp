@@ -6,27 +6,32 @@
 //   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j,
 // with the plastic extensions e^p (§4.2) held fixed between steps.
 #include "model/model.hpp"
+#include "model/plastic_flow.hpp"
+#include "model/stiffness.hpp"
 
 namespace fissure {
 
-class LpsModel final : public Model {
+class LpsModel final : public Model, public Stiffness, public PlasticFlow {
  public:
   LpsModel(const Particles& particles, const Families& families, MaterialPoints materials,
            bool surface_correction, const PlasticPoints* plasticity);
   std::string name() const override { return "lps"; }
   void forces(const double* y, double* f) override;
   void energy_density(const double* y, double* w) override;
+  void dilatation(const double* y, double* theta) const override;
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
   void break_bond(int i, std::size_t b) override;
   bool bond_intact(std::size_t b) const override { return bond_omega_[b] != 0; }
-  bool plastic() const override { return plastic_; }
+  Stiffness* stiffness() override { return this; }
+  const Stiffness* stiffness() const override { return this; }
+  PlasticFlow* plastic_flow() override { return plastic_ ? this : nullptr; }
+  const PlasticFlow* plastic_flow() const override { return plastic_ ? this : nullptr; }
   std::size_t update_plasticity(const double* y) override;
   const std::vector<double>& plastic_extension() const override { return plastic_extension_; }
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;
-  bool has_stiffness() const override { return true; }
   void assemble_majoriser(const double* y, SparseSymmetric& K) override;
   void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;
   void linearize(const double* y, bool clamp_compression) override;
@@ -55,6 +60,7 @@ class LpsModel final : public Model {
   std::vector<float> bond_weight_;          // c_ij
   std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
   std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j over the intact bonds
+  std::vector<double> dilatation_;          // θ_i, scratch of each evaluation at its y
   // What the force pass gathers from each neighbour, packed so one gather fetches it all.
   struct NeighbourTerms {
     double pressure;    // D_j = κθ_j − (B_j/3) Σ_k ω ê |ξ| V_k, per force call

@@ -10,12 +10,13 @@
 #include <vector>
 
 #include "core/named_arrays.hpp"
+#include "model/plastic_flow.hpp"
+#include "model/stiffness.hpp"
 #include "scene/particles.hpp"
 
 namespace fissure {
 
 struct Scene;
-struct SparseSymmetric;
 
 // Per-particle material constants, expanded from the bodies.
 struct MaterialPoints {
@@ -51,14 +52,15 @@ class Model {
   virtual std::string name() const = 0;
   const Families& families() const { return families_; }
   // Internal forces F_i = V_i Σ_j (T<j,i> − T<i,j>) V_j (Eq 2 times V_i), 3N, overwritten.
-  // Also updates dilatation().
+  // Evaluations (forces, energy_density, dilatation, forces_and_energy) keep nothing another
+  // call reads: what they share is scratch filled anew by each.
   virtual void forces(const double* y, double* f) = 0;
   // Strain energy density W_i of each particle at positions y (N values).
   virtual void energy_density(const double* y, double* w) = 0;
   // Total elastic energy Π = Σ V_i W_i.
   double elastic_energy(const double* y);
-  // Dilatation θ_i from the last forces() call.
-  const std::vector<double>& dilatation() const { return dilatation_; }
+  // Dilatation θ_i of each particle at positions y (N values), the one the forces at y use.
+  virtual void dilatation(const double* y, double* theta) const = 0;
   // Gershgorin bound on the stable explicit step at the reference state (notes §4).
   virtual double stable_time_step() const = 0;
   // Removes bond b of row i for good (fracture): it carries no force and stores no energy.
@@ -67,35 +69,17 @@ class Model {
   virtual void break_bond(int i, std::size_t b) = 0;
   // False once bond b has been broken.
   virtual bool bond_intact(std::size_t b) const = 0;
-  // Plasticity (paper §4.2): whether this model carries plastic extensions, the return map run
-  // by the post-step after a completed step (returns how many bonds yielded), and e^p per bond.
-  virtual bool plastic() const { return false; }
-  virtual std::size_t update_plasticity(const double*) { return 0; }
-  virtual const std::vector<double>& plastic_extension() const { return no_plastic_extension_; }
   // For checkpoints: what breaking and plasticity changed beyond the broken bonds themselves, and
   // its restoration after the broken bonds have been replayed through break_bond().
   virtual NamedArrays saved_state() const { return {}; }
   virtual void restore_state(const NamedArrays&) {}
-  // Stiffness for implicit integrators (notes §3), with e^p frozen, into a matrix of the
-  // pattern linear/sparse_symmetric.hpp names: the PSD bond-wise majoriser K^bw ⪰ K
-  // (bond_pattern) and the exact tangent K = ∂²Π/∂y² (two_hop_pattern). The tangent's material
-  // part is PSD (the energy is a sum of squares of extensions); only the geometric term of
-  // compressed bonds is indefinite, so with clamp_compression it is dropped, which gives a PSD
-  // matrix K⁺ ⪰ K on the tangent's pattern. Models without them return false from
-  // has_stiffness() and leave K untouched.
-  virtual bool has_stiffness() const { return false; }
-  virtual void assemble_majoriser(const double*, SparseSymmetric&) {}
-  virtual void assemble_tangent(const double*, SparseSymmetric&, bool /*clamp_compression*/) {}
-  // The same tangent without assembly (matrix-free): linearize() records what K (or K⁺ with
-  // clamp_compression) at y needs, apply_tangent() then returns out = K v for any v (3N each),
-  // equal to assemble_tangent's matrix times v up to round-off, at about the cost of one force
-  // evaluation per product.
-  virtual void linearize(const double*, bool /*clamp_compression*/) {}
-  virtual void apply_tangent(const double*, double*) const {}
-  // A one-hop scalar stiffness at the reference state, N×N on scalar_bond_pattern: a graph
-  // Laplacian whose bond weights are a third of the majoriser's bond stiffness (so that L ⊗ I₃
-  // has the majoriser's trace at rest), for preconditioners that scale to large scenes.
-  virtual void assemble_scalar_stiffness(SparseSymmetric&) const {}
+  // Optional capabilities, nullptr where the model has none: its stiffness for implicit
+  // integrators (model/stiffness.hpp) and its plastic flow (model/plastic_flow.hpp, only when
+  // the scene asks for plasticity).
+  virtual Stiffness* stiffness() { return nullptr; }
+  virtual const Stiffness* stiffness() const { return nullptr; }
+  virtual PlasticFlow* plastic_flow() { return nullptr; }
+  virtual const PlasticFlow* plastic_flow() const { return nullptr; }
   // F_int(y) into f (as forces()) and the elastic energy Π(y) (as elastic_energy()) from one pass
   // over the bonds: an implicit step's residual and its line search's objective at one point.
   virtual double forces_and_energy(const double* y, double* f);
@@ -112,13 +96,11 @@ class Model {
   const Particles& particles_;
   const Families& families_;
   MaterialPoints materials_;
-  std::vector<double> dilatation_;
   // Every change of the state counts once; break_bond may run for many rows at a time.
   void mark_changed() { revision_.fetch_add(1, std::memory_order_relaxed); }
 
  private:
   std::atomic<std::size_t> revision_{0};
-  std::vector<double> no_plastic_extension_;
 };
 
 // The model the scene's bodies ask for (material.model), set up for its particles.

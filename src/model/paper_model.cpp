@@ -58,14 +58,13 @@ PaperModel::PaperModel(const Particles& particles, const Families& families,
   }
 }
 
-void PaperModel::forces(const double* y, double* f) {
+void PaperModel::dilatation(const double* y, double* theta) const {
   const int n = particles_.count();
   const double* x = particles_.reference.data();
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
   const auto& V = particles_.volume;
-  // θ_i = 9/(4πδ⁴) Σ_k ω_ik s_ik (n·ξ) V_k (Eq 6), s = ℓ/|ξ| − 1 (Eq 7).
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double sum = 0;
@@ -74,8 +73,18 @@ void PaperModel::forces(const double* y, double* f) {
       const double stretch = g.length / xi[b] - 1.0;
       sum += omega_[b] * stretch * g.lambda * xi[b] * V[nbr[b]];
     }
-    dilatation_[i] = d_constant(materials_.horizon[i]) * sum;
+    theta[i] = d_constant(materials_.horizon[i]) * sum;
   }
+}
+
+void PaperModel::forces(const double* y, double* f) {
+  const int n = particles_.count();
+  const double* x = particles_.reference.data();
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& xi = families_.reference_length;
+  const auto& V = particles_.volume;
+  dilatation(y, dilatation_.data());
   // A = 4ωaΛθ + 4ωb(e − δ/4 Λθ) (Eqs 4, 8); F_i = V_i Σ_j ½(A_ij + A_ji) n_ij V_j (Eqs 2, 3).
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {

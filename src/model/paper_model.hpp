@@ -14,6 +14,8 @@ class PaperModel final : public Model {
   // The energy whose gradient the forces are when Λ = 1 (notes §3): W_i = αθ_i² +
   // b Σ_j ω_ij e_ij² V_j with θ_i = 9/(4πδ⁴) Σ_j ω_ij e_ij V_j and α = ½(κ − 5μ/3).
   void energy_density(const double* y, double* w) override;
+  // θ_i = 9/(4πδ⁴) Σ_k ω_ik s_ik (n·ξ) V_k (Eq 6), s = ℓ/|ξ| − 1 (Eq 7).
+  void dilatation(const double* y, double* theta) const override;
   double stable_time_step() const override;
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
@@ -21,8 +23,9 @@ class PaperModel final : public Model {
   bool bond_intact(std::size_t b) const override { return omega_[b] != 0; }
 
  private:
-  std::vector<double> omega_;  // ω_ij = δ/|ξ| (Eq 5)
-  std::vector<double> a_, b_;  // a and b of Eq 10 per particle
+  std::vector<double> omega_;       // ω_ij = δ/|ξ| (Eq 5)
+  std::vector<double> a_, b_;       // a and b of Eq 10 per particle
+  std::vector<double> dilatation_;  // θ_i, scratch of forces()
 };
 
 }  // namespace fissure

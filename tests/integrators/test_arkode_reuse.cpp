@@ -101,7 +101,7 @@ int checked_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realty
   const double* u = N_VGetArrayPointer(predicted);
   for (std::size_t k = 0; k < n; ++k) c->position[k] = c->origin[k] + u[k];
   Dynamics& dynamics = *c->vibration->dynamics;
-  c->vibration->model->assemble_tangent(c->position.data(), c->tangent, false);
+  c->vibration->model->stiffness()->assemble_tangent(c->position.data(), c->tangent, false);
   const double* dy = N_VGetArrayPointer(x);
   const double* dv = dy + n;
   const double* by = N_VGetArrayPointer(b);

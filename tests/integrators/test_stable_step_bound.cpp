@@ -84,10 +84,10 @@ TEST_P(StableStepBound, EstimateLiesBetweenTheExactCriticalStepAndAProvenFractio
   auto model = make_model(scene);
   const Particles& p = scene.particles;
   SparseSymmetric K = two_hop_pattern(scene.families);
-  model->assemble_tangent(p.reference.data(), K, false);
+  model->stiffness()->assemble_tangent(p.reference.data(), K, false);
   const double critical = 2 / std::sqrt(largest_eigenvalue(mass_scaled(K, p)));
   SparseSymmetric K_bw = bond_pattern(scene.families);
-  model->assemble_majoriser(p.reference.data(), K_bw);
+  model->stiffness()->assemble_majoriser(p.reference.data(), K_bw);
   const Eigen::MatrixXd S_bw = mass_scaled(K_bw, p);
   const double critical_bw = 2 / std::sqrt(largest_eigenvalue(S_bw));
   const Gershgorin g = majoriser_gershgorin(S_bw, p);

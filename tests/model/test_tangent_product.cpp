@@ -39,15 +39,15 @@ std::vector<double> probe_direction(std::size_t n, int probe) {
 double product_error(Model& model, const Families& families, const std::vector<double>& y,
                      bool clamp_product, bool clamp_assembled) {
   SparseSymmetric K = two_hop_pattern(families);
-  model.assemble_tangent(y.data(), K, clamp_assembled);
-  model.linearize(y.data(), clamp_product);
+  model.stiffness()->assemble_tangent(y.data(), K, clamp_assembled);
+  model.stiffness()->linearize(y.data(), clamp_product);
   const std::size_t n = y.size();
   std::vector<double> assembled(n), product(n);
   double worst = 0;
   for (int probe = 0; probe < 4; ++probe) {
     const std::vector<double> v = probe_direction(n, probe);
     K.multiply(v.data(), assembled.data());
-    model.apply_tangent(v.data(), product.data());
+    model.stiffness()->apply_tangent(v.data(), product.data());
     worst = std::max(worst, relative_difference(product, assembled));
   }
   return worst;
@@ -91,10 +91,11 @@ TEST(TangentProduct, MatchesAssembledTangentElastic) {
 TEST(TangentProduct, MatchesAssembledTangentWithPlasticExtension) {
   const Scene scene = small_block(", plasticity: {yield_stress: 5.0e3}");
   auto model = make_model(scene);
-  ASSERT_TRUE(model->plastic());
-  EXPECT_GT(model->update_plasticity(deformed(scene.particles, 0.05).data()), 0u);
+  ASSERT_NE(model->plastic_flow(), nullptr);
+  EXPECT_GT(model->plastic_flow()->update_plasticity(deformed(scene.particles, 0.05).data()), 0u);
   double largest = 0;
-  for (const double ep : model->plastic_extension()) largest = std::max(largest, std::abs(ep));
+  for (const double ep : model->plastic_flow()->plastic_extension())
+    largest = std::max(largest, std::abs(ep));
   std::printf("plastic: largest |e^p| %.2e m\n", largest);
   EXPECT_GT(largest, 0.0);
   expect_product_matches_assembly(*model, scene, "plastic");
@@ -155,7 +156,7 @@ TEST(ForcesAndEnergy, MatchForcesAndElasticEnergyElastic) {
 TEST(ForcesAndEnergy, MatchForcesAndElasticEnergyWithPlasticExtension) {
   const Scene scene = small_block(", plasticity: {yield_stress: 5.0e3}");
   auto model = make_model(scene);
-  EXPECT_GT(model->update_plasticity(deformed(scene.particles, 0.05).data()), 0u);
+  EXPECT_GT(model->plastic_flow()->update_plasticity(deformed(scene.particles, 0.05).data()), 0u);
   expect_forces_and_energy_match(*model, scene.particles, "plastic");
 }
 
@@ -166,7 +167,7 @@ TEST(ScalarStiffness, IsALaplacianWithAThirdOfTheMajoriserTrace) {
   auto model = make_model(scene);
   const auto broken = break_some_bonds(*model, scene.families);
   SparseSymmetric L = scalar_bond_pattern(scene.families);
-  model->assemble_scalar_stiffness(L);
+  model->stiffness()->assemble_scalar_stiffness(L);
   const int n = L.rows;
   double trace = 0, worst_row_sum = 0, worst_asymmetry = 0, smallest_diagonal = INFINITY;
   for (int i = 0; i < n; ++i) {
@@ -187,7 +188,7 @@ TEST(ScalarStiffness, IsALaplacianWithAThirdOfTheMajoriserTrace) {
     worst_row_sum = std::max(worst_row_sum, std::abs(sum) / diagonal);
   }
   SparseSymmetric K = bond_pattern(scene.families);
-  model->assemble_majoriser(scene.particles.reference.data(), K);
+  model->stiffness()->assemble_majoriser(scene.particles.reference.data(), K);
   double majoriser_trace = 0;
   for (int r = 0; r < K.rows; ++r) majoriser_trace += K.values[K.find(r, r)];
   const double trace_error = std::abs(3 * trace - majoriser_trace) / majoriser_trace;

@@ -12,6 +12,7 @@
 
 #include "core/named_arrays.hpp"
 #include "model/model.hpp"
+#include "support/dilatation.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -42,14 +43,12 @@ double normal_component(const Scene& scene, int i, int b, const double D[9]) {
 }
 
 // 3μ |ê_ij| / (σ_y |ξ_ij|) = |A_dev| / A^c for every directed bond at positions y, from the
-// model's e^p and θ^p (after forces(), dilatation() is θ at y): ê = e − e^p − (θ_i − θ^p_i)|ξ|/3.
+// model's e^p and θ^p (θ at y): ê = e − e^p − (θ_i − θ^p_i)|ξ|/3.
 std::vector<double> yield_ratio(Model& model, const Scene& scene, const std::vector<double>& y,
                                 double yield_stress) {
-  std::vector<double> f(y.size());
-  model.forces(y.data(), f.data());
-  const auto& theta = model.dilatation();
+  const std::vector<double> theta = test::dilatation(model, y);
   const std::vector<double> theta_p = *find_array(model.saved_state(), "model.plastic_dilatation");
-  const auto& ep = model.plastic_extension();
+  const auto& ep = model.plastic_flow()->plastic_extension();
   const Families& fam = scene.families;
   std::vector<double> ratio(fam.directed_bonds());
   for (int i = 0; i < scene.particles.count(); ++i)
@@ -111,14 +110,15 @@ TEST_P(YieldOnset, StartsAtThePredictedLoad) {
     double F[9];
     for (int k = 0; k < 9; ++k)
       F[k] = (k % 4 == 0 ? 1.0 : 0.0) + factor * onset * load.direction[k];
-    const std::size_t yielded = fresh->update_plasticity(test::deform(scene.particles, F).data());
+    const std::size_t yielded =
+        fresh->plastic_flow()->update_plasticity(test::deform(scene.particles, F).data());
     const double unloaded = fresh->elastic_energy(scene.particles.reference.data());
     std::printf("  load %.3f x predicted: %zu bonds yield, unloaded reference stores %.3e J\n",
                 factor, yielded, unloaded);
     if (factor < 1) {
       EXPECT_EQ(yielded, 0u);
       EXPECT_EQ(unloaded, 0.0);
-      for (double ep : fresh->plastic_extension()) EXPECT_EQ(ep, 0.0);
+      for (double ep : fresh->plastic_flow()->plastic_extension()) EXPECT_EQ(ep, 0.0);
     } else {
       EXPECT_GT(yielded, 0u);
       EXPECT_GT(unloaded, 0.0);
@@ -161,14 +161,14 @@ TEST(YieldSurface, ReturnMapLandsOnTheSurfaceOfItsStartingPlasticDilatation) {
     for (double s = onset * (1 + increment); s <= last; s += increment * onset) {
       const double F[9] = {1, s, 0, s, 1, 0, 0, 0, 1};  // pure shear ε12 = s
       const auto y = test::deform(scene.particles, F);
-      const std::vector<double> ep_before = model->plastic_extension();
+      const std::vector<double> ep_before = model->plastic_flow()->plastic_extension();
       const std::vector<double> theta_p_before =
           *find_array(model->saved_state(), "model.plastic_dilatation");
-      ASSERT_GT(model->update_plasticity(y.data()), 0u) << "s = " << s;
+      ASSERT_GT(model->plastic_flow()->update_plasticity(y.data()), 0u) << "s = " << s;
       const std::vector<double> theta_p =
           *find_array(model->saved_state(), "model.plastic_dilatation");
       const auto ratio = yield_ratio(*model, scene, y, yield_stress);
-      const auto& ep = model->plastic_extension();
+      const auto& ep = model->plastic_flow()->plastic_extension();
       for (int i = 0; i < scene.particles.count(); ++i) {
         const double shift = shear * (theta_p[i] - theta_p_before[i]) / yield_stress;
         for (int b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) {

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "model/model.hpp"
+#include "support/dilatation.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -35,13 +36,14 @@ Figures measure(const std::string& variant, double bulk, double shear, double ho
   std::vector<double> w(p.count()), f(y0.size());
   model->energy_density(y0.data(), w.data());
   model->forces(y0.data(), f.data());
-  const auto theta = model->dilatation();
+  const auto theta = test::dilatation(*model, y0);
   const auto y1 = test::deform(p, rotated);
   model->forces(y1.data(), f.data());
+  const auto theta_rotated = test::dilatation(*model, y1);
   Figures result = {0, 0, 0};
   for (int i : members) {
     result.bulk_ratio += w[i] / (4.5 * bulk * eps * eps) / members.size();
-    result.rotation_ratio += model->dilatation()[i] / theta[i] / members.size();
+    result.rotation_ratio += theta_rotated[i] / theta[i] / members.size();
   }
   for (int i : members)
     result.bulk_spread =

@@ -1,0 +1,30 @@
+#pragma once
+// An optional capability of a model (Model::stiffness()): its stiffness for implicit
+// integrators (notes §3), with e^p frozen. A model without it gives no implicit step.
+namespace fissure {
+
+struct SparseSymmetric;  // linear/sparse_symmetric.hpp
+
+class Stiffness {
+ public:
+  virtual ~Stiffness() = default;
+  // Into a matrix of the pattern linear/sparse_symmetric.hpp names: the PSD bond-wise majoriser
+  // K^bw ⪰ K (bond_pattern) and the exact tangent K = ∂²Π/∂y² (two_hop_pattern). The tangent's
+  // material part is PSD (the energy is a sum of squares of extensions); only the geometric term
+  // of compressed bonds is indefinite, so with clamp_compression it is dropped, which gives a
+  // PSD matrix K⁺ ⪰ K on the tangent's pattern.
+  virtual void assemble_majoriser(const double* y, SparseSymmetric& K) = 0;
+  virtual void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) = 0;
+  // The same tangent without assembly (matrix-free): linearize() records what K (or K⁺ with
+  // clamp_compression) at y needs, apply_tangent() then returns out = K v for any v (3N each),
+  // equal to assemble_tangent's matrix times v up to round-off, at about the cost of one force
+  // evaluation per product. What linearize() records is the only state between the two.
+  virtual void linearize(const double* y, bool clamp_compression) = 0;
+  virtual void apply_tangent(const double* v, double* out) const = 0;
+  // A one-hop scalar stiffness at the reference state, N×N on scalar_bond_pattern: a graph
+  // Laplacian whose bond weights are a third of the majoriser's bond stiffness (so that L ⊗ I₃
+  // has the majoriser's trace at rest), for preconditioners that scale to large scenes.
+  virtual void assemble_scalar_stiffness(SparseSymmetric& L) const = 0;
+};
+
+}  // namespace fissure
