@@ -58,11 +58,11 @@ double max_speed(const std::vector<double>& velocity) {
   return std::sqrt(largest);
 }
 
-// time.dt: auto: the explicit estimate times time.safety; for the static scheme, time.end over
+// time.dt: auto: the explicit estimate times time.safety; for a static solve, time.end over
 // its load increments; for an adaptive integrator, the frame interval (its largest step).
 double automatic_time_step(const Config& config, const Integrator& integrator, double stable_dt) {
   const IntegratorSettings& s = config.integrator;
-  if (s.type == "petsc_newton" && s.scheme == "static") return config.time.end / s.steps;
+  if (const int ramp = s.options ? s.options->load_increments() : 0) return config.time.end / ramp;
   if (integrator.adaptive()) return std::min(config.output.every, config.time.end);
   return config.time.safety * stable_dt;
 }

@@ -71,8 +71,8 @@ int rhs(realtype t, N_Vector u, N_Vector u_dot, void* user_data) {
 
 }  // namespace
 
-Arkode::Arkode(const IntegratorSettings& settings, const std::string& file)
-    : settings_(settings), file_(file), method_(arkode_method(settings.method, file)) {}
+Arkode::Arkode(const ArkodeSettings& settings, const std::string& file)
+    : settings_(settings), file_(file), method_(*settings.method) {}
 
 Arkode::~Arkode() = default;
 
@@ -214,6 +214,13 @@ Statistics Arkode::statistics() const {
   // The linear solver's counters: it lives across re-initialisations.
   if (solver_->reduced) solver_->reduced->append_statistics(stats);
   return stats;
+}
+
+IntegratorKind arkode_kind() {
+  return {"arkode", arkode_keys(), read_arkode_settings,
+          [](const IntegratorSettings& settings, const std::string& file) {
+            return std::make_unique<Arkode>(options_of<ArkodeSettings>(settings), file);
+          }};
 }
 
 }  // namespace fissure

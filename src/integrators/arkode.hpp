@@ -7,13 +7,14 @@
 #include <string>
 
 #include "integrators/arkode_methods.hpp"
-#include "integrators/integrator.hpp"
+#include "integrators/arkode_settings.hpp"
+#include "integrators/registry.hpp"
 
 namespace fissure {
 
 class Arkode final : public Integrator {
  public:
-  Arkode(const IntegratorSettings& settings, const std::string& file);
+  Arkode(const ArkodeSettings& settings, const std::string& file);
   ~Arkode() override;
   void check(const Dynamics& dynamics) const override;
   double step(Dynamics& dynamics, State& state, double dt) override;
@@ -31,11 +32,14 @@ class Arkode final : public Integrator {
  private:
   Statistics arkode_counters() const;
 
-  IntegratorSettings settings_;
+  ArkodeSettings settings_;
   std::string file_;
   const ArkodeMethod& method_;
   std::unique_ptr<Solver> solver_;
   bool reinitialise_ = false;
 };
+
+// type: arkode, its options in arkode_settings.hpp.
+IntegratorKind arkode_kind();
 
 }  // namespace fissure

@@ -4,24 +4,32 @@
 
 namespace fissure {
 
-ImplicitScheme::ImplicitScheme(const std::string& scheme, double rho_infinity) {
-  if (scheme == "backward_euler") {
-    kind_ = Kind::backward_euler;
-  } else if (scheme == "static") {
-    kind_ = Kind::static_equilibrium;
-  } else if ((tableau_ = find_sdirk_tableau(scheme))) {
-    kind_ = Kind::sdirk;
-  } else {
-    kind_ = Kind::newmark_alpha;
-    if (scheme == "alpha") {
+ImplicitScheme::ImplicitScheme(Scheme scheme, double rho_infinity) {
+  switch (scheme) {
+    case Scheme::backward_euler:
+      kind_ = Kind::backward_euler;
+      return;
+    case Scheme::static_equilibrium:
+      kind_ = Kind::static_equilibrium;
+      return;
+    case Scheme::sdirk3:
+    case Scheme::sdirk4:
+      kind_ = Kind::sdirk;
+      tableau_ = scheme == Scheme::sdirk3 ? &sdirk3_tableau() : &sdirk4_tableau();
+      return;
+    case Scheme::alpha: {
       const double r = rho_infinity;  // Chung & Hulbert (1993), Eqs 25 and 17
       alpha_m_ = (2 * r - 1) / (r + 1);
       alpha_f_ = r / (r + 1);
       gamma_ = 0.5 - alpha_m_ + alpha_f_;
       beta_ = 0.25 * (1 - alpha_m_ + alpha_f_) * (1 - alpha_m_ + alpha_f_);
+      break;
     }
-    held_fraction_ = 1 - alpha_f_;
+    case Scheme::newmark:
+      break;
   }
+  kind_ = Kind::newmark_alpha;
+  held_fraction_ = 1 - alpha_f_;
 }
 
 void ImplicitScheme::predict(const State& state, const std::vector<double>& acceleration, double c,

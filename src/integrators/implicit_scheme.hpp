@@ -8,14 +8,16 @@
 #include <vector>
 
 #include "integrators/integrator.hpp"
+#include "integrators/petsc_newton_settings.hpp"
 #include "integrators/sdirk_tableau.hpp"
 
 namespace fissure {
 
 class ImplicitScheme {
  public:
-  // scheme: backward_euler, newmark, alpha (with ρ∞), sdirk3, sdirk4, static.
-  ImplicitScheme(const std::string& scheme, double rho_infinity);
+  using Scheme = PetscNewtonSettings::Scheme;
+  // rho_infinity: ρ∞ of alpha.
+  ImplicitScheme(Scheme scheme, double rho_infinity);
 
   // Minimisations per step: the SDIRK stages, else 1.
   int stages() const { return tableau_ ? tableau_->stages : 1; }

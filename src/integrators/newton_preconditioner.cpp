@@ -29,8 +29,8 @@ void shift_scalar(SparseSymmetric& a, const std::vector<int>& diagonal,
 
 }  // namespace
 
-const char* preconditioner_name(IntegratorSettings::Preconditioner kind) {
-  using P = IntegratorSettings::Preconditioner;
+const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
+  using P = PetscNewtonSettings::Preconditioner;
   switch (kind) {
     case P::tangent:
       return "tangent";
@@ -46,14 +46,14 @@ const char* preconditioner_name(IntegratorSettings::Preconditioner kind) {
   return "auto";
 }
 
-IntegratorSettings::Preconditioner choose_preconditioner(const Families& families) {
+PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families) {
   // Measured on the glass cantilever (docs/integrators.md, bench_implicit_step): the two-hop
   // factor is fastest per step while it fits (7,948 particles: 0.92 s per SDIRK4 step against
   // 2.3 s with the majoriser and 4.8 s with the scalar factor) but takes 2.6 GB there and grows
   // far faster than the scene; the one-hop majoriser's factor a quarter of that; the scalar
   // factor a ninth of the majoriser's, the only one that fits at 1e5 particles.
   const std::size_t particles = families.offsets.size() - 1;
-  using P = IntegratorSettings::Preconditioner;
+  using P = PetscNewtonSettings::Preconditioner;
   return particles <= 10000 ? P::tangent : particles <= 30000 ? P::majoriser : P::scalar;
 }
 
@@ -62,8 +62,8 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
   const Families& families = system.dynamics().model().families();
   switch (kind) {
     case Kind::tangent:
-      matrix_ =
-          system.tangent() == "majoriser" ? bond_pattern(families) : two_hop_pattern(families);
+      matrix_ = system.tangent() == NewtonSystem::Tangent::majoriser ? bond_pattern(families)
+                                                                     : two_hop_pattern(families);
       break;
     case Kind::majoriser:
     case Kind::gamg:
@@ -121,10 +121,11 @@ void NewtonPreconditioner::refresh(const double* z) {
   const double inertia = system_.inertia();
   switch (kind_) {
     case Kind::tangent:
-      if (system_.tangent() == "majoriser")
+      if (system_.tangent() == NewtonSystem::Tangent::majoriser)
         stiffness.assemble_majoriser(z, matrix_);
       else
-        stiffness.assemble_tangent(z, matrix_, system_.tangent() == "projected");
+        stiffness.assemble_tangent(z, matrix_,
+                                   system_.tangent() == NewtonSystem::Tangent::projected);
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::majoriser:

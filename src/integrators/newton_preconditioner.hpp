@@ -13,13 +13,12 @@
 #include <string>
 
 #include "integrators/newton_system.hpp"
-#include "scene/config.hpp"
 
 namespace fissure {
 
 class NewtonPreconditioner {
  public:
-  using Kind = IntegratorSettings::Preconditioner;
+  using Kind = PetscNewtonSettings::Preconditioner;
   NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options);
   ~NewtonPreconditioner();
   NewtonPreconditioner(const NewtonPreconditioner&) = delete;
@@ -55,7 +54,7 @@ class NewtonPreconditioner {
 };
 
 // The preconditioner `auto` picks for a scene of these families (docs/integrators.md).
-IntegratorSettings::Preconditioner choose_preconditioner(const Families& families);
-const char* preconditioner_name(IntegratorSettings::Preconditioner kind);
+PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families);
+const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind);
 
 }  // namespace fissure

@@ -7,7 +7,7 @@
 
 namespace fissure {
 
-NewtonSystem::NewtonSystem(Dynamics& dynamics, const std::string& tangent)
+NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
     : dynamics_(dynamics), tangent_(tangent) {
   const auto& m = dynamics.mass();
   mass_.resize(3 * m.size());
@@ -16,7 +16,7 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, const std::string& tangent)
   force_.resize(mass_.size());
   external_.resize(mass_.size());
   masked_.resize(mass_.size());
-  if (tangent == "majoriser") majoriser_ = bond_pattern(dynamics.model().families());
+  if (tangent == Tangent::majoriser) majoriser_ = bond_pattern(dynamics.model().families());
 }
 
 std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const State& state,
@@ -100,10 +100,10 @@ void NewtonSystem::linearize(const double* z) {
 void NewtonSystem::apply(const double* v, double* out) {
   Stiffness& stiffness = *dynamics_.model().stiffness();  // check() made sure it is there
   if (!linearized_ || linearized_tangent_ != tangent_) {
-    if (tangent_ == "majoriser")
+    if (tangent_ == Tangent::majoriser)
       stiffness.assemble_majoriser(linearization_.data(), majoriser_);
     else
-      stiffness.linearize(linearization_.data(), tangent_ == "projected");
+      stiffness.linearize(linearization_.data(), tangent_ == Tangent::projected);
     linearized_ = true;
     linearized_tangent_ = tangent_;
     ++linearizations;
@@ -111,7 +111,7 @@ void NewtonSystem::apply(const double* v, double* out) {
   const std::size_t n = mass_.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k) masked_[k] = fixed_[k] ? 0.0 : v[k];
-  if (tangent_ == "majoriser")
+  if (tangent_ == Tangent::majoriser)
     majoriser_.multiply(masked_.data(), out);
   else
     stiffness.apply_tangent(masked_.data(), out);

@@ -9,21 +9,23 @@
 #include <vector>
 
 #include "integrators/implicit_scheme.hpp"
+#include "integrators/petsc_newton_settings.hpp"
 #include "linear/sparse_symmetric.hpp"
 
 namespace fissure {
 
 class NewtonSystem {
  public:
-  // tangent: "majoriser" (bond-wise, assembled on bond_pattern), or matrix-free "exact",
-  // "projected" (the tangent without compressed bonds' geometric term) or "auto" (either;
-  // use_tangent picks). See model.hpp.
-  NewtonSystem(Dynamics& dynamics, const std::string& tangent);
-  // Switches between "exact" and "projected".
-  void use_tangent(const std::string& tangent) {
-    if (tangent_ != "majoriser") tangent_ = tangent;
+  using Tangent = PetscNewtonSettings::Tangent;
+  // tangent: majoriser (bond-wise, assembled on bond_pattern), or matrix-free exact, projected
+  // (the tangent without compressed bonds' geometric term) or automatic (either; use_tangent
+  // picks). See model.hpp.
+  NewtonSystem(Dynamics& dynamics, Tangent tangent);
+  // Switches between exact and projected.
+  void use_tangent(Tangent tangent) {
+    if (tangent_ != Tangent::majoriser) tangent_ = tangent;
   }
-  const std::string& tangent() const { return tangent_; }
+  Tangent tangent() const { return tangent_; }
 
   // Prepares a stage of size h from `state` (the scheme predicted it): f = M g + contact at the
   // start of the step, scaled by `load_factor`; held particles fixed. Returns the starting
@@ -60,7 +62,7 @@ class NewtonSystem {
   void evaluate(const double* z, long& passes);
 
   Dynamics& dynamics_;
-  std::string tangent_;
+  Tangent tangent_;
   std::vector<char> fixed_;       // per unknown: held by a constraint
   std::vector<double> mass_;      // per unknown
   std::vector<double> external_;  // f
@@ -72,7 +74,7 @@ class NewtonSystem {
   std::size_t revision_ = 0;           // the model's, at point_
   std::vector<double> linearization_;  // where the Newton matrix is taken
   bool linearized_ = false;            // the model holds linearization_'s tangent
-  std::string linearized_tangent_;
+  Tangent linearized_tangent_ = Tangent::automatic;
   SparseSymmetric majoriser_;   // tangent: majoriser, assembled at linearization_
   std::vector<double> masked_;  // scratch: v with held unknowns zeroed
   double inertia_ = 0;

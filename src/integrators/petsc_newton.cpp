@@ -24,7 +24,7 @@ namespace fissure {
 namespace fs = std::filesystem;
 
 struct PetscNewton::Solver {
-  Solver(Dynamics& dynamics, const IntegratorSettings& settings)
+  Solver(Dynamics& dynamics, const PetscNewtonSettings& settings)
       : system(dynamics, settings.tangent), scheme(settings.scheme, settings.rho_infinity) {}
   ~Solver() {
     petsc_release(SNESDestroy(&snes), "SNESDestroy");
@@ -55,7 +55,7 @@ struct PetscNewton::Solver {
   Refresh pending = Refreshes::first;
   Refreshes refreshes;
   double factor_inertia = -1;
-  std::string factor_tangent;
+  NewtonSystem::Tangent factor_tangent = NewtonSystem::Tangent::automatic;
   bool factor_failed = false;        // the last refresh met a matrix not positive definite
   int iterations_since_refresh = 0;  // in the current Newton solve
   std::vector<double> norms;         // |r_k| of the current Newton solve
@@ -217,7 +217,7 @@ PetscErrorCode monitor(SNES, PetscInt iteration, PetscReal norm, void* context) 
 }
 
 // The options database of one integrator, from integrator.petsc_options.
-PetscOptions read_petsc_options(const IntegratorSettings& settings, const std::string& file) {
+PetscOptions read_petsc_options(const PetscNewtonSettings& settings, const std::string& file) {
   PetscOptions options;
   petsc_check(PetscOptionsCreate(&options), "PetscOptionsCreate");
   if (PetscOptionsInsertString(options, settings.petsc_options.c_str()) != 0) {
@@ -228,14 +228,15 @@ PetscOptions read_petsc_options(const IntegratorSettings& settings, const std::s
   return options;
 }
 
-void set_up_petsc(Solver& s, const IntegratorSettings& settings, const std::string& file) {
+void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::string& file) {
   s.options = read_petsc_options(settings, file);
-  using P = IntegratorSettings::Preconditioner;
-  using K = IntegratorSettings::Krylov;
+  using P = PetscNewtonSettings::Preconditioner;
+  using K = PetscNewtonSettings::Krylov;
   const Families& families = s.system.dynamics().model().families();
   P kind = settings.preconditioner;
   if (kind == P::automatic) kind = choose_preconditioner(families);
-  if (kind == P::tangent && s.system.tangent() == "majoriser") kind = P::majoriser;
+  if (kind == P::tangent && s.system.tangent() == NewtonSystem::Tangent::majoriser)
+    kind = P::majoriser;
   s.preconditioner = std::make_unique<NewtonPreconditioner>(s.system, kind, s.options);
   K krylov = settings.krylov;
   if (krylov == K::automatic) krylov = kind == P::tangent ? K::none : K::cg;
@@ -346,7 +347,7 @@ void warn_unused_options(Solver& s, const std::string& file) {
 
 }  // namespace
 
-PetscNewton::PetscNewton(const IntegratorSettings& settings, const std::string& file)
+PetscNewton::PetscNewton(const PetscNewtonSettings& settings, const std::string& file)
     : settings_(settings), file_(file) {}
 
 PetscNewton::~PetscNewton() = default;
@@ -423,7 +424,8 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   // was not positive definite) or Newton did not converge.
   PetscInt iterations = 0;
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
-  auto solve = [&](const std::string& tangent) {
+  using Tangent = NewtonSystem::Tangent;
+  auto solve = [&](Tangent tangent) {
     s.system.use_tangent(tangent);
     PetscScalar* x;
     petsc_check(VecGetArray(s.unknowns, &x), "VecGetArray");
@@ -459,10 +461,10 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     // auto: the exact tangent converges quadratically where A M + K is positive definite; where
     // it is not, or Newton fails with it, the stage is redone with the projected tangent K⁺ ⪰ K.
     auto solve_stage = [&] {
-      if (settings_.tangent == "auto") {
-        if (!solve("exact")) {
+      if (settings_.tangent == Tangent::automatic) {
+        if (!solve(Tangent::exact)) {
           ++s.tangent_fallbacks;
-          return solve("projected");
+          return solve(Tangent::projected);
         }
         return true;
       }
@@ -479,18 +481,19 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
       s.reuse = true;
       s.pending = Refreshes::fallback;
     }
-    if (!solved && settings_.tangent != "auto" && reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    if (!solved && settings_.tangent != Tangent::automatic &&
+        reason == SNES_DIVERGED_LINEAR_SOLVE) {
       return fmt::format(
           "petsc_newton ({}): the linear solve failed in the step from t = {:.6g} s: the '{}' "
           "tangent is not positive definite there; use integrator.tangent: auto or projected",
-          settings_.scheme, state.time, settings_.tangent);
+          scheme_name(settings_.scheme), state.time, tangent_name(settings_.tangent));
     }
     if (reason < 0)
       return fmt::format(
           "petsc_newton ({}): Newton did not converge in the step from t = {:.6g} s with dt = "
           "{:.3g} s: {} after {} iterations. Try a smaller time.dt, or raise -snes_max_it or "
           "loosen -snes_rtol in integrator.petsc_options",
-          settings_.scheme, state.time, dt, SNESConvergedReasons[reason], iterations);
+          scheme_name(settings_.scheme), state.time, dt, SNESConvergedReasons[reason], iterations);
     if (!s.options_checked) {
       warn_unused_options(s, file_);
       s.options_checked = true;
@@ -557,6 +560,13 @@ std::string PetscNewton::solver_view() const {
   text << in.rdbuf();
   fs::remove(path);
   return text.str();
+}
+
+IntegratorKind petsc_newton_kind() {
+  return {"petsc_newton", petsc_newton_keys(), read_petsc_newton_settings,
+          [](const IntegratorSettings& settings, const std::string& file) {
+            return std::make_unique<PetscNewton>(options_of<PetscNewtonSettings>(settings), file);
+          }};
 }
 
 }  // namespace fissure

@@ -8,13 +8,14 @@
 #include <memory>
 #include <string>
 
-#include "integrators/integrator.hpp"
+#include "integrators/petsc_newton_settings.hpp"
+#include "integrators/registry.hpp"
 
 namespace fissure {
 
 class PetscNewton final : public Integrator {
  public:
-  PetscNewton(const IntegratorSettings& settings, const std::string& file);
+  PetscNewton(const PetscNewtonSettings& settings, const std::string& file);
   ~PetscNewton() override;
   void check(const Dynamics& dynamics) const override;
   double step(Dynamics& dynamics, State& state, double dt) override;
@@ -34,10 +35,13 @@ class PetscNewton final : public Integrator {
   // One step of dt: empty on success, else why it failed (the state is then partly updated).
   std::string attempt(Dynamics& dynamics, State& state, double dt);
 
-  IntegratorSettings settings_;
+  PetscNewtonSettings settings_;
   std::string file_;
   std::unique_ptr<Solver> solver_;
   NamedArrays restored_;  // a checkpoint's state, applied when the solver is set up
 };
+
+// type: petsc_newton, its options in petsc_newton_settings.hpp.
+IntegratorKind petsc_newton_kind();
 
 }  // namespace fissure

@@ -1,9 +1,7 @@
-#include <functional>
-#include <utility>
+#include "integrators/registry.hpp"
 
 #include "core/error.hpp"
 #include "integrators/arkode.hpp"
-#include "integrators/integrator.hpp"
 #include "integrators/petsc_newton.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "integrators/velocity_verlet.hpp"
@@ -13,28 +11,33 @@ namespace fissure {
 
 namespace {
 
-using Factory =
-    std::function<std::unique_ptr<Integrator>(const IntegratorSettings&, const std::string&)>;
+void add(std::vector<IntegratorKind>& kinds, IntegratorKind kind) {
+  for (const auto& k : kinds)
+    if (k.name == kind.name)
+      throw std::logic_error("the integrator '" + kind.name + "' is registered twice");
+  register_option_parser(IntegratorOptionParser{kind.name, kind.keys, kind.parse});
+  kinds.push_back(std::move(kind));
+}
 
-const std::vector<std::pair<std::string, Factory>>& registry() {
-  static const std::vector<std::pair<std::string, Factory>> entries = {
-      {"symplectic_euler", [](auto&, auto&) { return std::make_unique<SymplecticEuler>(); }},
-      {"velocity_verlet", [](auto&, auto&) { return std::make_unique<VelocityVerlet>(); }},
-      {"petsc_newton",
-       [](const IntegratorSettings& s, const std::string& file) {
-         return std::make_unique<PetscNewton>(s, file);
-       }},
-      {"arkode", [](const IntegratorSettings& s,
-                    const std::string& file) { return std::make_unique<Arkode>(s, file); }},
-  };
-  return entries;
+std::vector<IntegratorKind>& kinds() {
+  static std::vector<IntegratorKind> registered = [] {
+    std::vector<IntegratorKind> builtin;
+    add(builtin, symplectic_euler_kind());
+    add(builtin, velocity_verlet_kind());
+    add(builtin, petsc_newton_kind());
+    add(builtin, arkode_kind());
+    return builtin;
+  }();
+  return registered;
 }
 
 }  // namespace
 
+void register_integrator(IntegratorKind kind) { add(kinds(), std::move(kind)); }
+
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names;
-  for (const auto& [name, factory] : registry()) names.push_back(name);
+  for (const auto& kind : kinds()) names.push_back(kind.name);
   return names;
 }
 
@@ -46,10 +49,10 @@ std::unique_ptr<Integrator> make_integrator(const std::string& type, const std::
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings,
                                             const std::string& file) {
-  const std::string& type = settings.type;
-  for (const auto& [name, factory] : registry())
-    if (name == type) return factory(settings, file);
-  throw InputError(file, "integrator.type", unknown_choice("integrator", type, integrator_names()));
+  for (const auto& kind : kinds())
+    if (kind.name == settings.type) return kind.make(settings, file);
+  throw InputError(file, "integrator.type",
+                   unknown_choice("integrator", settings.type, integrator_names()));
 }
 
 }  // namespace fissure

@@ -42,11 +42,14 @@ SdirkTableau hairer_wanner() {
 
 }  // namespace
 
-const SdirkTableau* find_sdirk_tableau(const std::string& name) {
-  static const SdirkTableau sdirk3 = alexander(), sdirk4 = hairer_wanner();
-  if (name == "sdirk3") return &sdirk3;
-  if (name == "sdirk4") return &sdirk4;
-  return nullptr;
+const SdirkTableau& sdirk3_tableau() {
+  static const SdirkTableau tableau = alexander();
+  return tableau;
+}
+
+const SdirkTableau& sdirk4_tableau() {
+  static const SdirkTableau tableau = hairer_wanner();
+  return tableau;
 }
 
 }  // namespace fissure

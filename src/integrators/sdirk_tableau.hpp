@@ -22,7 +22,8 @@ struct SdirkTableau {
 };
 
 // sdirk3: Alexander (1977), 3 stages, order 3, L-stable. sdirk4: Hairer & Wanner, Solving ODEs
-// II, Table IV.6.5, 5 stages, order 4, L-stable. nullptr for any other name.
-const SdirkTableau* find_sdirk_tableau(const std::string& name);
+// II, Table IV.6.5, 5 stages, order 4, L-stable.
+const SdirkTableau& sdirk3_tableau();
+const SdirkTableau& sdirk4_tableau();
 
 }  // namespace fissure

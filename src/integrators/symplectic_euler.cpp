@@ -18,4 +18,10 @@ double SymplecticEuler::step(Dynamics& dynamics, State& state, double dt) {
   return dt;
 }
 
+IntegratorKind symplectic_euler_kind() {
+  return {"symplectic_euler", {}, nullptr, [](const IntegratorSettings&, const std::string&) {
+            return std::make_unique<SymplecticEuler>();
+          }};
+}
+
 }  // namespace fissure

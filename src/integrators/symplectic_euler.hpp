@@ -1,6 +1,6 @@
 #pragma once
 // Semi-implicit (symplectic) Euler, the paper's integrator: v ← v + Δt a(y, v); y ← y + Δt v.
-#include "integrators/integrator.hpp"
+#include "integrators/registry.hpp"
 
 namespace fissure {
 
@@ -12,5 +12,8 @@ class SymplecticEuler final : public Integrator {
  private:
   std::vector<double> acceleration_;
 };
+
+// type: symplectic_euler, no options of its own.
+IntegratorKind symplectic_euler_kind();
 
 }  // namespace fissure

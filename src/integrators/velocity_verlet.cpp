@@ -38,4 +38,10 @@ void VelocityVerlet::restore_state(const NamedArrays& state) {
   if (a) acceleration_ = *a;
 }
 
+IntegratorKind velocity_verlet_kind() {
+  return {"velocity_verlet", {}, nullptr, [](const IntegratorSettings&, const std::string&) {
+            return std::make_unique<VelocityVerlet>();
+          }};
+}
+
 }  // namespace fissure

@@ -1,6 +1,6 @@
 #pragma once
 // Velocity Verlet (kick–drift–kick), second order and symplectic for conservative forces.
-#include "integrators/integrator.hpp"
+#include "integrators/registry.hpp"
 
 namespace fissure {
 
@@ -16,5 +16,8 @@ class VelocityVerlet final : public Integrator {
   std::vector<double> acceleration_;
   bool have_acceleration_ = false;
 };
+
+// type: velocity_verlet, no options of its own.
+IntegratorKind velocity_verlet_kind();
 
 }  // namespace fissure

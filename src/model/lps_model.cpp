@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "model/dilatation_calibration.hpp"
+#include "scene/scene.hpp"
 
 namespace fissure {
 
@@ -321,6 +323,31 @@ std::size_t LpsModel::bytes_per_bond() const {
 std::size_t LpsModel::bytes_read_per_bond() const {
   // dilatation pass: neighbour, |ξ|, ω, c_ij; force pass: the same and c_ji
   return 2 * (sizeof(int) + sizeof(double) + 2 * sizeof(float)) + sizeof(float);
+}
+
+ModelKind lps_model_kind() {
+  return {"lps", {}, nullptr, [](const Scene& scene, MaterialPoints m) {
+            const Config& config = scene.config;
+            const int n = scene.particles.count();
+            PlasticPoints plasticity;
+            if (config.plasticity_enabled()) {
+              plasticity.yield_potential.resize(n);
+              plasticity.yield_stress.resize(n);
+              plasticity.max_plastic_stretch.resize(n);
+              for (int i = 0; i < n; ++i) {
+                const PlasticitySettings& p =
+                    config.bodies[scene.particles.body[i]].material.plasticity;
+                // A body without plasticity in a plastic scene never yields.
+                plasticity.yield_potential[i] =
+                    p.enabled ? p.yield : std::numeric_limits<double>::infinity();
+                plasticity.yield_stress[i] = p.yield_stress;
+                plasticity.max_plastic_stretch[i] = p.max_plastic_stretch;
+              }
+            }
+            return std::make_unique<LpsModel>(scene.particles, scene.families, std::move(m),
+                                              config.bodies.front().material.surface_correction,
+                                              config.plasticity_enabled() ? &plasticity : nullptr);
+          }};
 }
 
 }  // namespace fissure

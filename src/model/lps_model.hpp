@@ -5,7 +5,7 @@
 // (dilatation_calibration.hpp). Energy (per particle i, ê = e − e^p − (θ_i − θ^p_i)|ξ|/3):
 //   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j,
 // with the plastic extensions e^p (§4.2) held fixed between steps.
-#include "model/model.hpp"
+#include "model/model_registry.hpp"
 #include "model/plastic_flow.hpp"
 #include "model/stiffness.hpp"
 
@@ -88,5 +88,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   mutable std::vector<TangentTerms> tangent_terms_;
   mutable std::vector<double> tangent_rate_;  // s = n·(v_j − v_i) per directed bond, per product
 };
+
+// material.model: lps (the default), no options of its own; plastic with material.plasticity.
+ModelKind lps_model_kind();
 
 }  // namespace fissure

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "model/stable_time_step.hpp"
+#include "scene/scene.hpp"
 
 namespace fissure {
 
@@ -149,6 +150,19 @@ std::size_t PaperModel::bytes_per_bond() const {
 
 std::size_t PaperModel::bytes_read_per_bond() const {
   return 2 * (sizeof(int) + 2 * sizeof(double));  // neighbour, |ξ|, ω in both passes
+}
+
+ModelKind paper_model_kind() {
+  return {"paper",
+          {},
+          [](const OptionReader& r) -> std::shared_ptr<const ModelOptions> {
+            if (r.has("plasticity"))
+              r.fail("plasticity", "plasticity needs model: lps (the default)");
+            return nullptr;
+          },
+          [](const Scene& scene, MaterialPoints m) {
+            return std::make_unique<PaperModel>(scene.particles, scene.families, std::move(m));
+          }};
 }
 
 }  // namespace fissure

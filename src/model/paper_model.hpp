@@ -2,7 +2,7 @@
 // The paper's literal isotropic model, Eqs 3–10, with Λ = n·ξ/|ξ| in Eqs 4, 6 and 8 and the
 // continuum constants a, b, 9/(4πδ⁴). Kept to show why the default model deviates (docs/model.md):
 // it is neither objective nor conservative, and its moduli depend on the particle set.
-#include "model/model.hpp"
+#include "model/model_registry.hpp"
 
 namespace fissure {
 
@@ -27,5 +27,8 @@ class PaperModel final : public Model {
   std::vector<double> a_, b_;       // a and b of Eq 10 per particle
   std::vector<double> dilatation_;  // θ_i, scratch of forces()
 };
+
+// material.model: paper; it refuses material.plasticity.
+ModelKind paper_model_kind();
 
 }  // namespace fissure

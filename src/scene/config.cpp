@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "scene/config_file.hpp"
+#include "scene/option_reader.hpp"
 #include "scene/render_settings_reader.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -241,19 +242,68 @@ Collider read_collider(const YamlReader& r, const YAML::Node& node, const std::s
   return c;
 }
 
+// "a", "a and b", "a, b and c".
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    text += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  return text;
+}
+
+template <class Options>
+const OptionParser<Options>* find_parser(const std::vector<OptionParser<Options>>& parsers,
+                                         const std::string& type) {
+  for (const auto& p : parsers)
+    if (p.name == type) return &p;
+  return nullptr;
+}
+
+// The keys of the map at `path` for a part of type `type` (scene/option_parsers.hpp): a key of
+// other registered types fails naming them (a key of one type before a key several share),
+// then any key neither in `shared` nor the type's own.
+template <class Options>
+void check_part_keys(const YamlReader& r, const YAML::Node& node, const std::string& path,
+                     const std::string& type, std::vector<std::string> shared,
+                     const std::vector<OptionParser<Options>>& parsers) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> owners;
+  for (const auto& p : parsers)
+    for (const auto& key : p.keys) {
+      auto it = std::find_if(owners.begin(), owners.end(), [&](auto& o) { return o.first == key; });
+      if (it == owners.end()) it = owners.insert(owners.end(), {key, {}});
+      it->second.push_back(p.name);
+    }
+  std::stable_partition(owners.begin(), owners.end(), [](auto& o) { return o.second.size() == 1; });
+  for (const auto& [key, names] : owners)
+    if (node[key] && std::find(names.begin(), names.end(), type) == names.end())
+      r.fail(join(path, key), fmt::format("is an option of {}, not of '{}'", listed(names), type));
+  if (const auto* parser = find_parser(parsers, type))
+    shared.insert(shared.end(), parser->keys.begin(), parser->keys.end());
+  r.check_keys(node, path, shared);
+}
+
+// The options of type `type` read by its registered parser, or null (none, or not registered).
+template <class Options>
+std::shared_ptr<const Options> read_part_options(
+    const YamlReader& r, const YAML::Node& node, const std::string& path, const std::string& type,
+    const std::vector<OptionParser<Options>>& parsers) {
+  const auto* parser = find_parser(parsers, type);
+  if (!parser || !parser->parse) return nullptr;
+  return parser->parse(OptionReader(r, node, path));
+}
+
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
-  r.check_keys(node, path,
-               {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction",
-                "fracture", "plasticity", "anisotropy"});
+  r.require_map(node, path);
   Material m;
-  if (node["model"]) {
-    const std::string model = r.string(node["model"], join(path, "model"));
-    if (model == "lps")
-      m.model = ModelVariant::lps;
-    else if (model == "paper")
-      m.model = ModelVariant::paper;
-    else
-      r.fail(join(path, "model"), fmt::format("unknown model '{}' (valid: lps, paper)", model));
+  if (node["model"]) m.model = r.string(node["model"], join(path, "model"));
+  check_part_keys(r, node, path, m.model,
+                  {"model", "density", "bulk_modulus", "shear_modulus", "surface_correction",
+                   "fracture", "plasticity", "anisotropy"},
+                  model_option_parsers());
+  if (!find_parser(model_option_parsers(), m.model)) {
+    std::vector<std::string> names;
+    for (const auto& p : model_option_parsers()) names.push_back(p.name);
+    r.fail(join(path, "model"),
+           fmt::format("unknown model '{}' (valid: {})", m.model, fmt::join(names, ", ")));
   }
   m.density = r.positive(node["density"], join(path, "density"));
   m.bulk_modulus = r.positive(node["bulk_modulus"], join(path, "bulk_modulus"));
@@ -263,11 +313,9 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
   if (node["fracture"]) m.fracture = read_fracture(r, node["fracture"], join(path, "fracture"));
   if (node["anisotropy"])
     m.anisotropy = read_anisotropy(r, node["anisotropy"], join(path, "anisotropy"));
-  if (node["plasticity"]) {
+  if (node["plasticity"])
     m.plasticity = read_plasticity(r, node["plasticity"], join(path, "plasticity"));
-    if (m.model != ModelVariant::lps)
-      r.fail(join(path, "plasticity"), "plasticity needs model: lps (the default)");
-  }
+  m.options = read_part_options(r, node, path, m.model, model_option_parsers());
   return m;
 }
 
@@ -323,139 +371,37 @@ TimeSettings read_time(const YamlReader& r, const YAML::Node& node) {
   return t;
 }
 
-// Keys shared by all integrators, then those of each type that has options of its own.
+// The keys every integrator shares; the type's own are its parser's (integrators/registry.hpp).
 IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) {
   r.require_map(node, "integrator");
   IntegratorSettings s;
   if (node["type"]) s.type = r.string(node["type"], "integrator.type");
-  const std::vector<std::string> petsc = {"scheme",
-                                          "rho_infinity",
-                                          "steps",
-                                          "tangent",
-                                          "petsc_options",
-                                          "max_step_halvings",
-                                          "preconditioner",
-                                          "krylov",
-                                          "refresh_contraction",
-                                          "refresh_iterations"};
-  const std::vector<std::string> arkode = {"method", "rtol", "atol", "fixed_step"};
-  // The factor reuse of both implicit integrators' linear solves (docs/integrators.md).
-  const std::vector<std::string> implicit = {"reuse_factor", "refresh_krylov"};
-  std::vector<std::string> allowed = {"type", "allow_unstable_dt", "energy_growth_limit"};
-  if (s.type == "petsc_newton") allowed.insert(allowed.end(), petsc.begin(), petsc.end());
-  if (s.type == "arkode") allowed.insert(allowed.end(), arkode.begin(), arkode.end());
-  const bool is_implicit = s.type == "petsc_newton" || s.type == "arkode";
-  if (is_implicit) allowed.insert(allowed.end(), implicit.begin(), implicit.end());
-  for (const auto& key : petsc)
-    if (node[key] && s.type != "petsc_newton")
-      r.fail("integrator." + key, fmt::format("is an option of petsc_newton, not of '{}'", s.type));
-  for (const auto& key : arkode)
-    if (node[key] && s.type != "arkode")
-      r.fail("integrator." + key, fmt::format("is an option of arkode, not of '{}'", s.type));
-  for (const auto& key : implicit)
-    if (node[key] && !is_implicit)
-      r.fail("integrator." + key,
-             fmt::format("is an option of petsc_newton and arkode, not of '{}'", s.type));
-  r.check_keys(node, "integrator", allowed);
+  check_part_keys(r, node, "integrator", s.type,
+                  {"type", "allow_unstable_dt", "energy_growth_limit"},
+                  integrator_option_parsers());
   if (node["allow_unstable_dt"])
     s.allow_unstable_dt = r.boolean(node["allow_unstable_dt"], "integrator.allow_unstable_dt");
   if (node["energy_growth_limit"])
     s.energy_growth_limit =
         r.non_negative(node["energy_growth_limit"], "integrator.energy_growth_limit");
-  if (node["max_step_halvings"]) {
-    const double halvings =
-        r.non_negative(node["max_step_halvings"], "integrator.max_step_halvings");
-    if (halvings != std::floor(halvings) || halvings > 20)
-      r.fail("integrator.max_step_halvings",
-             fmt::format("must be a whole number from 0 to 20, got {}", halvings));
-    s.max_step_halvings = static_cast<int>(halvings);
-  }
-  auto one_of = [&](const char* key, std::string& value, const std::vector<std::string>& valid) {
-    if (!node[key]) return;
-    value = r.string(node[key], std::string("integrator.") + key);
-    if (std::find(valid.begin(), valid.end(), value) == valid.end())
-      r.fail(std::string("integrator.") + key, unknown_choice(key, value, valid));
-  };
-  one_of("scheme", s.scheme, {"backward_euler", "newmark", "alpha", "sdirk3", "sdirk4", "static"});
-  one_of("tangent", s.tangent, {"auto", "projected", "majoriser", "exact"});
-  std::string choice;
-  using P = IntegratorSettings::Preconditioner;
-  one_of("preconditioner", choice, {"auto", "tangent", "majoriser", "scalar", "gamg"});
-  if (!choice.empty())
-    s.preconditioner = choice == "tangent"     ? P::tangent
-                       : choice == "majoriser" ? P::majoriser
-                       : choice == "scalar"    ? P::scalar
-                       : choice == "gamg"      ? P::gamg
-                                               : P::automatic;
-  choice.clear();
-  using K = IntegratorSettings::Krylov;
-  one_of("krylov", choice, {"auto", "none", "cg", "gmres"});
-  if (!choice.empty())
-    s.krylov = choice == "none"    ? K::none
-               : choice == "cg"    ? K::cg
-               : choice == "gmres" ? K::gmres
-                                   : K::automatic;
-  if (s.tangent == "majoriser" && s.preconditioner == P::tangent)
-    r.fail("integrator.preconditioner",
-           "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "
-           "majoriser");
-  // arkode: off unless asked for; CG with the stale factor cost more than refactorizing at each
-  // γ change on the bar swing at 857 and 7,761 particles (docs/integrators.md).
-  if (node["reuse_factor"])
-    s.reuse_factor = r.boolean(node["reuse_factor"], "integrator.reuse_factor");
-  else if (s.type == "arkode")
-    s.reuse_factor = false;
-  if (node["refresh_contraction"]) {
-    s.refresh_contraction =
-        r.positive(node["refresh_contraction"], "integrator.refresh_contraction");
-    if (s.refresh_contraction >= 1)
-      r.fail("integrator.refresh_contraction",
-             fmt::format("must be in (0, 1), got {}", s.refresh_contraction));
-  }
-  auto whole = [&](const char* key, int& value) {
-    if (!node[key]) return;
-    const double v = r.positive(node[key], std::string("integrator.") + key);
-    if (v != std::floor(v) || v > 1e6)
-      r.fail(std::string("integrator.") + key,
-             fmt::format("must be a whole number from 1 to 1e6, got {}", v));
-    value = static_cast<int>(v);
-  };
-  whole("refresh_iterations", s.refresh_iterations);
-  whole("refresh_krylov", s.refresh_krylov);
-  if (node["rho_infinity"]) {
-    s.rho_infinity = r.non_negative(node["rho_infinity"], "integrator.rho_infinity");
-    if (s.rho_infinity > 1)
-      r.fail("integrator.rho_infinity", fmt::format("must be in [0, 1], got {}", s.rho_infinity));
-  }
-  if (node["steps"]) {
-    const double steps = r.positive(node["steps"], "integrator.steps");
-    if (steps != std::floor(steps) || steps > 1e9)
-      r.fail("integrator.steps",
-             fmt::format("must be a whole number of increments, got {}", steps));
-    s.steps = static_cast<int>(steps);
-  }
-  if (node["petsc_options"])
-    s.petsc_options = r.string(node["petsc_options"], "integrator.petsc_options");
-  if (node["method"]) s.method = r.string(node["method"], "integrator.method");
-  if (node["rtol"]) s.rtol = r.positive(node["rtol"], "integrator.rtol");
-  if (node["atol"]) s.atol = r.positive(node["atol"], "integrator.atol");
-  if (node["fixed_step"]) s.fixed_step = r.boolean(node["fixed_step"], "integrator.fixed_step");
+  s.options = read_part_options(r, node, "integrator", s.type, integrator_option_parsers());
   return s;
 }
 
-// petsc_newton static ramps the loads over integrator.steps increments of time.dt: a time.dt
-// that reaches time.end in fewer increments would end the run part-way up the ramp.
+// A static solve ramps the loads over integrator.steps increments of time.dt: a time.dt that
+// reaches time.end in fewer increments would end the run part-way up the ramp.
 void check_load_ramp(const YamlReader& r, const TimeSettings& t, const IntegratorSettings& s) {
-  if (s.type != "petsc_newton" || s.scheme != "static" || t.dt_auto) return;
+  const int ramp = s.options ? s.options->load_increments() : 0;
+  if (ramp == 0 || t.dt_auto) return;
   const long increments = steps_to(t.end, t.dt);
-  if (increments >= s.steps) return;
+  if (increments >= ramp) return;
   r.fail("time.dt",
          fmt::format("{:.6g} s reaches time.end = {:.6g} s in {} load increment(s), but "
                      "integrator.steps = {} ramps the loads over {} increments: the run would "
                      "end at {:.3g} of the load. Use time.dt: auto (time.end / integrator.steps), "
                      "a time.dt of at most {:.6g} s, or integrator.steps: {}",
-                     t.dt, t.end, increments, s.steps, s.steps, double(increments) / s.steps,
-                     t.end / s.steps, increments));
+                     t.dt, t.end, increments, ramp, ramp, double(increments) / ramp, t.end / ramp,
+                     increments));
 }
 
 Config read_config(const YamlReader& r, const YAML::Node& root) {

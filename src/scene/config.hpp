@@ -3,9 +3,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "scene/option_parsers.hpp"
 #include "scene/render_settings.hpp"
 
 namespace fissure {
@@ -31,8 +33,6 @@ struct Geometry {
   Vec3 translate{};    // mesh, points
 };
 
-enum class ModelVariant { lps, paper };
-
 // Bond breaking (paper §5.1, Eqs 18–19); absent means the body never breaks.
 struct FractureSettings {
   bool enabled = false;
@@ -55,7 +55,7 @@ struct AnisotropySettings {
 };
 
 struct Material {
-  ModelVariant model = ModelVariant::lps;
+  std::string model = "lps";  // a registered model (model/model_registry.hpp)
   double density = 0;
   double bulk_modulus = 0;
   double shear_modulus = 0;
@@ -63,6 +63,7 @@ struct Material {
   FractureSettings fracture;
   PlasticitySettings plasticity;
   AnisotropySettings anisotropy;
+  std::shared_ptr<const ModelOptions> options;  // the model's own, from its parser; null: none
 };
 
 struct Body {
@@ -131,40 +132,16 @@ inline long steps_to(double end, double dt) {
   return static_cast<long>(std::ceil(end / dt - 1e-9));
 }
 
-// The time integrator (docs/integrators.md); only the keys of the chosen type may be given.
+// The time integrator (docs/integrators.md): the keys every type shares, and the type's own
+// options as its registered parser read them (scene/option_parsers.hpp); only the keys of the
+// chosen type may be given.
 struct IntegratorSettings {
   std::string type = "symplectic_euler";
   bool allow_unstable_dt = false;  // explicit: run even when time.dt exceeds the stable estimate
   // The run stops as unstable once energy that no load put in exceeds this fraction of the
   // run's energy scale (the ledger's balance with Π ≥ 0, checked every step); 0 turns it off.
   double energy_growth_limit = 1.0;
-  int max_step_halvings = 4;  // petsc_newton: halvings of a step whose Newton solve fails
-  // petsc_newton
-  std::string scheme = "backward_euler";  // backward_euler | newmark | alpha | static
-  double rho_infinity = 0.5;              // alpha: spectral radius at infinite frequency
-  int steps = 1;                          // static: load increments over which loads ramp
-  std::string tangent = "auto";           // auto | projected | majoriser | exact
-  std::string petsc_options;              // passed to PETSc untouched, e.g. "-snes_rtol 1e-8"
-  // The factor Newton's linear solves are preconditioned with (docs/integrators.md): the
-  // tangent itself (two-hop, CHOLMOD), the one-hop majoriser (CHOLMOD), a scalar one-hop matrix
-  // times I₃ (CHOLMOD) or algebraic multigrid on the majoriser (PETSc GAMG); auto by size.
-  enum class Preconditioner { automatic, tangent, majoriser, scalar, gamg };
-  Preconditioner preconditioner = Preconditioner::automatic;
-  // The linear solver around it: none (modified Newton: the factor alone), cg or gmres on the
-  // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
-  enum class Krylov { automatic, none, cg, gmres };
-  Krylov krylov = Krylov::automatic;
-  // petsc_newton and arkode (reuse_factor, refresh_krylov; docs/integrators.md). A config that
-  // does not set reuse_factor gets false for arkode (read_integrator: it did not pay there).
-  bool reuse_factor = true;  // false: refactorize at every Newton iteration (arkode: γ change)
-  double refresh_contraction = 0.25;  // refresh when |r_k+1| / |r_k| exceeds this
-  int refresh_iterations = 6;         // ... or a step's Newton iterations since the refresh do
-  int refresh_krylov = 40;            // ... or one linear solve needs more Krylov iterations
-  // arkode
-  std::string method = "ARK436L2SA";  // an ARKODE table or IMEX pair by name
-  double rtol = 1e-6;
-  double atol = 1e-9;
-  bool fixed_step = false;  // take steps of exactly time.dt (no error control)
+  std::shared_ptr<const IntegratorOptions> options;  // null: the type's defaults
 };
 
 struct OutputSettings {

@@ -5,7 +5,26 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "integrators/petsc_newton_settings.hpp"
 #include "scene/config.hpp"
+
+namespace {
+
+// The lean library has no integrators or models, whose registries name the built-in ones
+// (integrators/registry.cpp, model/model_registry.cpp): their option parsers are registered
+// here, petsc_newton's the real one (PETSc-free); arkode's needs SUNDIALS and is left out.
+[[maybe_unused]] const bool registered = [] {
+  using fissure::register_option_parser;
+  register_option_parser(fissure::IntegratorOptionParser{"symplectic_euler", {}, nullptr});
+  register_option_parser(fissure::IntegratorOptionParser{"velocity_verlet", {}, nullptr});
+  register_option_parser(fissure::IntegratorOptionParser{
+      "petsc_newton", fissure::petsc_newton_keys(), fissure::read_petsc_newton_settings});
+  register_option_parser(fissure::ModelOptionParser{"lps", {}, nullptr});
+  register_option_parser(fissure::ModelOptionParser{"paper", {}, nullptr});
+  return true;
+}();
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -11,12 +11,12 @@
 namespace fissure {
 namespace {
 
-IntegratorSettings adaptive(const char* method, double rtol, double atol) {
-  IntegratorSettings s;
-  s.type = "arkode";
-  s.method = method;
+ArkodeSettings adaptive(const char* method, double rtol, double atol) {
+  ArkodeSettings s;
+  s.method = &arkode_method(method, "test");
   s.rtol = rtol;
   s.atol = atol;
+  s.reuse_factor = true;  // what settings made in code had before arkode's own default
   return s;
 }
 
@@ -58,11 +58,13 @@ TEST_P(ArkodeAdaptive, ProbeErrorWithinTenTimesTheTolerance) {
   const int probe = probe_particle(*v);
   const double frame = 5e-4;
   const int frames = 10;
-  auto reference_integrator = make_integrator(adaptive("VERNER_8_5_6", 1e-12, 1e-15), "test");
+  auto reference_integrator = make_integrator(
+      integrator_settings("arkode", adaptive("VERNER_8_5_6", 1e-12, 1e-15)), "test");
   const auto reference = probe_track(*v, *reference_integrator, probe, frame, frames);
   for (const double rtol : {1e-4, 1e-6}) {
     const double atol = 1e-3 * rtol;
-    auto integrator = make_integrator(adaptive(GetParam(), rtol, atol), "test");
+    auto integrator =
+        make_integrator(integrator_settings("arkode", adaptive(GetParam(), rtol, atol)), "test");
     const auto track = probe_track(*v, *integrator, probe, frame, frames);
     // ARKODE integrates the displacement from the first state (docs/integrators.md), so rtol
     // weighs the probe's motion: its amplitude over the run is the scale.

@@ -18,14 +18,17 @@
 namespace fissure {
 namespace {
 
-IntegratorSettings adaptive(const char* method, bool reuse, double rtol = 1e-6) {
-  IntegratorSettings s;
-  s.type = "arkode";
-  s.method = method;
+ArkodeSettings adaptive(const char* method, bool reuse, double rtol = 1e-6) {
+  ArkodeSettings s;
+  s.method = &arkode_method(method, "test");
   s.rtol = rtol;
   s.atol = 1e-3 * rtol;
   s.reuse_factor = reuse;
   return s;
+}
+
+std::unique_ptr<Integrator> make(const ArkodeSettings& settings) {
+  return make_integrator(integrator_settings("arkode", settings), "test");
 }
 
 // Adaptive steps from the vibration's start to `end`.
@@ -50,8 +53,8 @@ TEST(ArkodeFactorReuse, GivesTheTrajectoryOfRefactorizingAtEveryGammaChange) {
   };
   for (const Case& c : {Case{"SDIRK_2_1_2", 1e-4, 0.25 * kEnd}, Case{"ARK436L2SA", 1e-6, kEnd}}) {
     const char* method = c.method;
-    auto reused = make_integrator(adaptive(method, true, c.rtol), "test");
-    auto every = make_integrator(adaptive(method, false, c.rtol), "test");
+    auto reused = make(adaptive(method, true, c.rtol));
+    auto every = make(adaptive(method, false, c.rtol));
     const State a = run(*v, *reused, v->initial, c.end);
     const State b = run(*v, *every, v->initial, c.end);
     const double reach = test::max_difference(v->initial.position, b.position);
@@ -190,7 +193,7 @@ TEST(ArkodeFactorReuse, EverySolveMeetsArkodesToleranceOnTheCurrentStageSystem) 
 // factor, once, counted under bonds.
 TEST(ArkodeFactorReuse, RefreshesWhenBondsBreak) {
   auto v = test::make_vibration();
-  auto integrator = make_integrator(adaptive("ARK436L2SA", true), "test");
+  auto integrator = make(adaptive("ARK436L2SA", true));
   State s = run(*v, *integrator, v->initial, 0.5 * kEnd);
   EXPECT_EQ(test::statistic(*integrator, "refreshes_bonds_broken"), 0);
   const Families& f = v->scene.families;
@@ -209,10 +212,10 @@ TEST(ArkodeFactorReuse, RefreshesWhenBondsBreak) {
 // is not reached on this scene.
 TEST(ArkodeFactorReuse, RefreshesWhenCgPassesTheLimit) {
   auto v = test::make_vibration();
-  IntegratorSettings strict = adaptive("ARK436L2SA", true);
+  ArkodeSettings strict = adaptive("ARK436L2SA", true);
   strict.refresh_krylov = 1;
-  auto limited = make_integrator(strict, "test");
-  auto gentle = make_integrator(adaptive("ARK436L2SA", true), "test");
+  auto limited = make(strict);
+  auto gentle = make(adaptive("ARK436L2SA", true));
   run(*v, *limited, v->initial, kEnd);
   run(*v, *gentle, v->initial, kEnd);
   test::print_statistics("refresh_krylov 1", *limited);

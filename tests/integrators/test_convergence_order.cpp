@@ -7,7 +7,8 @@
 
 #include <cmath>
 
-#include "integrators/arkode_methods.hpp"
+#include "integrators/arkode.hpp"
+#include "integrators/petsc_newton.hpp"
 #include "support/vibration.hpp"
 
 namespace fissure {
@@ -20,25 +21,24 @@ struct Case {
 };
 
 IntegratorSettings petsc(const std::string& scheme) {
-  IntegratorSettings s;
-  s.type = "petsc_newton";
-  s.scheme = scheme;
+  PetscNewtonSettings s;
+  s.scheme = scheme_named(scheme);
   s.rho_infinity = 0.5;
   // Solve each step to round-off with the exact tangent (SPD at these small steps), so the
   // solver's error does not blur the scheme's.
-  s.tangent = "exact";
+  s.tangent = PetscNewtonSettings::Tangent::exact;
   s.petsc_options = "-snes_rtol 1e-12 -snes_atol 1e-9 -snes_stol 1e-14";
-  return s;
+  return integrator_settings("petsc_newton", s);
 }
 
 IntegratorSettings arkode(const std::string& method) {
-  IntegratorSettings s;
-  s.type = "arkode";
-  s.method = method;
+  ArkodeSettings s;
+  s.method = &arkode_method(method, "test");
   s.fixed_step = true;
   s.rtol = 1e-9;  // the Newton tolerance of implicit stages follows rtol and atol
   s.atol = 1e-12;
-  return s;
+  s.reuse_factor = true;  // what settings made in code had before arkode's own default
+  return integrator_settings("arkode", s);
 }
 
 std::vector<Case> cases() {

@@ -16,10 +16,9 @@ namespace {
 
 // Each stage solved to 1e-10 of its first residual: two runs that both meet it may differ by
 // about that fraction of a step's displacement per step.
-IntegratorSettings newton(const std::string& scheme) {
-  IntegratorSettings s;
-  s.type = "petsc_newton";
-  s.scheme = scheme;
+PetscNewtonSettings newton(const std::string& scheme) {
+  PetscNewtonSettings s;
+  s.scheme = scheme_named(scheme);
   s.petsc_options = "-snes_rtol 1e-10 -snes_stol 1e-16";
   return s;
 }
@@ -29,8 +28,12 @@ struct Trajectory {
   std::unique_ptr<Integrator> integrator;
 };
 
-Trajectory simulate(test::Vibration& v, const IntegratorSettings& settings, int steps, double dt) {
-  Trajectory r{{}, make_integrator(settings, "test")};
+std::unique_ptr<Integrator> make(const PetscNewtonSettings& settings) {
+  return make_integrator(integrator_settings("petsc_newton", settings), "test");
+}
+
+Trajectory simulate(test::Vibration& v, const PetscNewtonSettings& settings, int steps, double dt) {
+  Trajectory r{{}, make(settings)};
   State s = v.initial;
   for (int k = 0; k < steps; ++k) r.integrator->step(*v.dynamics, s, dt);
   r.position = s.position;
@@ -51,7 +54,7 @@ TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
   auto v = test::make_vibration();
   const double dt = 20 * v->stable_dt;
   for (const char* scheme : {"backward_euler", "newmark", "sdirk4"}) {
-    IntegratorSettings fresh = newton(scheme);
+    PetscNewtonSettings fresh = newton(scheme);
     fresh.reuse_factor = false;
     const Trajectory reused = simulate(*v, newton(scheme), 40, dt);
     const Trajectory every = simulate(*v, fresh, 40, dt);
@@ -76,7 +79,7 @@ TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
 // A new dt changes A: the factor is refreshed once at the change, and counted.
 TEST(FactorReuse, RefreshesWhenTheStepSizeChanges) {
   auto v = test::make_vibration();
-  auto integrator = make_integrator(newton("newmark"), "test");
+  auto integrator = make(newton("newmark"));
   State s = v->initial;
   for (int k = 0; k < 5; ++k) integrator->step(*v->dynamics, s, 10 * v->stable_dt);
   // A step that differs only by the round-off of end − t (the run loop's last step) keeps the
@@ -101,7 +104,7 @@ TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
   auto v = test::make_vibration();
   auto w = test::make_vibration();
   const double dt = 10 * v->stable_dt;
-  auto integrator = make_integrator(newton("backward_euler"), "test");
+  auto integrator = make(newton("backward_euler"));
   State s = v->initial;
   for (int k = 0; k < 3; ++k) integrator->step(*v->dynamics, s, dt);
   // Break every bond of particle 0 in both models, then go on from the same state.
@@ -116,7 +119,7 @@ TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
   // old bonds.
   std::fill(s.velocity.begin(), s.velocity.end(), 0.0);
   State t = s;
-  auto after = make_integrator(newton("backward_euler"), "test");
+  auto after = make(newton("backward_euler"));
   for (int k = 0; k < 3; ++k) {
     integrator->step(*v->dynamics, s, dt);
     after->step(*w->dynamics, t, dt);
@@ -137,7 +140,7 @@ TEST(FactorReuse, RefreshesWhenIterationsDegrade) {
   const double dt = 20 * v->stable_dt;
   const int steps = 10;
   const Trajectory gentle = simulate(*v, newton("backward_euler"), steps, dt);
-  IntegratorSettings strict = newton("backward_euler");
+  PetscNewtonSettings strict = newton("backward_euler");
   strict.refresh_contraction = 1e-14;
   const Trajectory contraction = simulate(*v, strict, steps, dt);
   strict.refresh_contraction = 0.25;
@@ -159,8 +162,8 @@ TEST(FactorReuse, RefreshesWhenIterationsDegrade) {
 // Every preconditioner and Krylov method solves the same steps: the same trajectory within the
 // Newton tolerance, and the Krylov ones report their iterations.
 TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
-  using P = IntegratorSettings::Preconditioner;
-  using K = IntegratorSettings::Krylov;
+  using P = PetscNewtonSettings::Preconditioner;
+  using K = PetscNewtonSettings::Krylov;
   auto v = test::make_vibration();
   const double dt = 20 * v->stable_dt;
   const Trajectory reference = simulate(*v, newton("newmark"), 20, dt);
@@ -174,7 +177,7 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
         Variant{"majoriser+cg", P::majoriser, K::automatic},
         Variant{"scalar+cg", P::scalar, K::automatic}, Variant{"scalar+gmres", P::scalar, K::gmres},
         Variant{"gamg+cg", P::gamg, K::automatic}}) {
-    IntegratorSettings s = newton("newmark");
+    PetscNewtonSettings s = newton("newmark");
     s.preconditioner = c.preconditioner;
     s.krylov = c.krylov;
     s.petsc_options += " -ksp_rtol 1e-12";

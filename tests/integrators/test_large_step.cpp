@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "app/energy.hpp"
+#include "integrators/arkode.hpp"
 #include "support/scenes.hpp"
 #include "support/state.hpp"
 #include "support/static_equilibrium.hpp"
@@ -53,19 +54,19 @@ std::vector<double> static_shape(Anchored& a) {
   return test::static_equilibrium(*a.dynamics, a.initial).position;
 }
 
-IntegratorSettings petsc(const char* scheme) {
-  IntegratorSettings s;
-  s.type = "petsc_newton";
-  s.scheme = scheme;
-  return s;
+IntegratorSettings petsc(const char* scheme, const std::string& petsc_options = "") {
+  PetscNewtonSettings s;
+  s.scheme = scheme_named(scheme);
+  s.petsc_options = petsc_options;
+  return integrator_settings("petsc_newton", s);
 }
 
 IntegratorSettings arkode_fixed(const char* method) {
-  IntegratorSettings s;
-  s.type = "arkode";
-  s.method = method;
+  ArkodeSettings s;
+  s.method = &arkode_method(method, "test");
   s.fixed_step = true;
-  return s;
+  s.reuse_factor = true;  // what settings made in code had before arkode's own default
+  return integrator_settings("arkode", s);
 }
 
 struct Released {
@@ -104,8 +105,10 @@ Released run_hundred_times(Anchored& a, const IntegratorSettings& settings) {
       "%s/%s at dt = %.3g s (100x): max growth per step %.2e E0 (step %d), max |E - E0| %.2e E0, "
       "final E %.2e E0\n ",
       settings.type.c_str(),
-      settings.type == "arkode" ? settings.method.c_str() : settings.scheme.c_str(), dt,
-      run.worst_growth, run.worst_growth_step, run.worst_drift, run.final_energy);
+      settings.type == "arkode"
+          ? options_of<ArkodeSettings>(settings).method->name.c_str()
+          : scheme_name(options_of<PetscNewtonSettings>(settings).scheme).c_str(),
+      dt, run.worst_growth, run.worst_growth_step, run.worst_drift, run.final_energy);
   for (const auto& [name, value] : integrator->statistics())
     std::printf(" %s %.0f", name.c_str(), value);
   std::printf("\n");
@@ -158,9 +161,7 @@ class LargeStepSdirk : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(LargeStepSdirk, EnergyNeverGrows) {
   auto a = anchored_bar();
-  IntegratorSettings settings = petsc(GetParam());
-  settings.petsc_options = "-snes_rtol 1e-10";
-  const Released run = run_hundred_times(*a, settings);
+  const Released run = run_hundred_times(*a, petsc(GetParam(), "-snes_rtol 1e-10"));
   ASSERT_FALSE(run.position.empty());
   EXPECT_LT(run.worst_growth, 1e-9);
   EXPECT_LT(run.final_energy, 1.0);

@@ -14,9 +14,7 @@ namespace {
 
 TEST(PetscSolver, KspViewShowsPreonlyCholeskyWithCholmod) {
   auto v = test::make_vibration();
-  IntegratorSettings settings;
-  settings.type = "petsc_newton";
-  PetscNewton integrator(settings, "test");
+  PetscNewton integrator(PetscNewtonSettings{}, "test");
   State s = v->initial;
   integrator.step(*v->dynamics, s, 10 * v->stable_dt);
   const std::string view = integrator.solver_view();
@@ -53,12 +51,11 @@ TEST(PetscSolver, AutoTangentFallsBackToProjectedWhereTheExactFactorizationFails
   for (std::size_t k = 0; k < squeezed.position.size(); ++k)
     squeezed.position[k] = 0.03 + 0.75 * (v->scene.particles.reference[k] - 0.03);
   const double dt = 20 * v->stable_dt;
-  IntegratorSettings settings;
-  settings.type = "petsc_newton";
-  settings.tangent = "exact";
+  PetscNewtonSettings settings;
+  settings.tangent = PetscNewtonSettings::Tangent::exact;
   settings.max_step_halvings = 0;
   {
-    auto exact = make_integrator(settings, "test");
+    auto exact = make_integrator(integrator_settings("petsc_newton", settings), "test");
     State s = squeezed;
     try {
       exact->step(*v->dynamics, s, dt);
@@ -68,7 +65,7 @@ TEST(PetscSolver, AutoTangentFallsBackToProjectedWhereTheExactFactorizationFails
       EXPECT_NE(std::string(e.what()).find("not positive definite"), std::string::npos);
     }
   }
-  settings.tangent = "auto";
+  settings.tangent = PetscNewtonSettings::Tangent::automatic;
   auto integrator = std::make_unique<PetscNewton>(settings, "test");
   State s = squeezed;
   EXPECT_EQ(integrator->step(*v->dynamics, s, dt), dt);

@@ -14,11 +14,10 @@ namespace fissure {
 namespace {
 
 IntegratorSettings sdirk(const std::string& scheme, const std::string& options) {
-  IntegratorSettings s;
-  s.type = "petsc_newton";
-  s.scheme = scheme;
+  PetscNewtonSettings s;
+  s.scheme = scheme_named(scheme);
   s.petsc_options = options;
-  return s;
+  return integrator_settings("petsc_newton", s);
 }
 
 class SdirkNewtonDefault : public ::testing::TestWithParam<const char*> {};

@@ -5,6 +5,8 @@
 #include <fstream>
 
 #include "app/run_fissure.hpp"
+#include "integrators/petsc_newton_settings.hpp"
+#include "integrators/registry.hpp"
 #include "scene/config.hpp"
 #include "support/error_message.hpp"
 
@@ -50,7 +52,8 @@ TEST(ConfigBase, IncludingFileOverridesKeyByKey) {
   EXPECT_DOUBLE_EQ(c.time.dt, 0.001);
   EXPECT_DOUBLE_EQ(c.gravity[2], -1.0);
   EXPECT_EQ(c.integrator.type, "petsc_newton");
-  EXPECT_EQ(c.integrator.scheme, "newmark");
+  EXPECT_EQ(options_of<PetscNewtonSettings>(c.integrator).scheme,
+            PetscNewtonSettings::Scheme::newmark);
   ASSERT_EQ(c.bodies.size(), 1u);
   EXPECT_DOUBLE_EQ(c.bodies[0].resolution, 0.025);
 }

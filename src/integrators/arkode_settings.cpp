@@ -1,0 +1,33 @@
+#include "integrators/arkode_settings.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace fissure {
+
+const std::vector<std::string>& arkode_keys() {
+  // The last two are petsc_newton's too (petsc_newton_settings.cpp).
+  static const std::vector<std::string> keys = {"method",     "rtol",         "atol",
+                                                "fixed_step", "reuse_factor", "refresh_krylov"};
+  return keys;
+}
+
+std::shared_ptr<const IntegratorOptions> read_arkode_settings(const OptionReader& r) {
+  auto s = std::make_shared<ArkodeSettings>();
+  s->reuse_factor = r.boolean("reuse_factor", s->reuse_factor);
+  if (r.has("refresh_krylov")) {
+    const double v = r.positive("refresh_krylov", 0);
+    if (v != std::floor(v) || v > 1e6)
+      r.fail("refresh_krylov", fmt::format("must be a whole number from 1 to 1e6, got {}", v));
+    s->refresh_krylov = static_cast<int>(v);
+  }
+  const std::string method = r.string("method", s->method->name);
+  s->rtol = r.positive("rtol", s->rtol);
+  s->atol = r.positive("atol", s->atol);
+  s->fixed_step = r.boolean("fixed_step", s->fixed_step);
+  s->method = &arkode_method(method, r.file());
+  return s;
+}
+
+}  // namespace fissure

@@ -1,0 +1,28 @@
+#pragma once
+// The options of arkode (docs/integrators.md) and their parser: the method (an ARKODE table or
+// IMEX pair by name), the tolerances, fixed steps and the factor reuse of implicit stages.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/arkode_methods.hpp"
+#include "scene/option_parsers.hpp"
+
+namespace fissure {
+
+struct ArkodeSettings final : IntegratorOptions {
+  const ArkodeMethod* method = &arkode_method("ARK436L2SA", "");
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  bool fixed_step = false;  // take steps of exactly time.dt (no error control)
+  // Off by default: CG with the stale factor cost more than refactorizing at each γ change on
+  // the bar swing at 857 and 7,761 particles (docs/integrators.md).
+  bool reuse_factor = false;
+  int refresh_krylov = 40;  // refresh when one linear solve needs more Krylov iterations
+};
+
+// The keys under integrator: that are arkode's own, and their parser.
+const std::vector<std::string>& arkode_keys();
+std::shared_ptr<const IntegratorOptions> read_arkode_settings(const OptionReader& r);
+
+}  // namespace fissure

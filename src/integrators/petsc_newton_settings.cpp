@@ -1,0 +1,104 @@
+#include "integrators/petsc_newton_settings.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fissure {
+
+namespace {
+
+using S = PetscNewtonSettings;
+
+const std::vector<std::pair<std::string, S::Scheme>> kSchemes = {
+    {"backward_euler", S::Scheme::backward_euler},
+    {"newmark", S::Scheme::newmark},
+    {"alpha", S::Scheme::alpha},
+    {"sdirk3", S::Scheme::sdirk3},
+    {"sdirk4", S::Scheme::sdirk4},
+    {"static", S::Scheme::static_equilibrium}};
+const std::vector<std::pair<std::string, S::Tangent>> kTangents = {
+    {"auto", S::Tangent::automatic},
+    {"projected", S::Tangent::projected},
+    {"majoriser", S::Tangent::majoriser},
+    {"exact", S::Tangent::exact}};
+const std::vector<std::pair<std::string, S::Preconditioner>> kPreconditioners = {
+    {"auto", S::Preconditioner::automatic},
+    {"tangent", S::Preconditioner::tangent},
+    {"majoriser", S::Preconditioner::majoriser},
+    {"scalar", S::Preconditioner::scalar},
+    {"gamg", S::Preconditioner::gamg}};
+const std::vector<std::pair<std::string, S::Krylov>> kKrylov = {{"auto", S::Krylov::automatic},
+                                                                {"none", S::Krylov::none},
+                                                                {"cg", S::Krylov::cg},
+                                                                {"gmres", S::Krylov::gmres}};
+
+// A whole number from 1 to 1e6 (the refresh limits).
+int refresh_limit(const OptionReader& r, const std::string& key, int fallback) {
+  if (!r.has(key)) return fallback;
+  const double v = r.positive(key, 0);
+  if (v != std::floor(v) || v > 1e6)
+    r.fail(key, fmt::format("must be a whole number from 1 to 1e6, got {}", v));
+  return static_cast<int>(v);
+}
+
+}  // namespace
+
+const std::vector<std::string>& petsc_newton_keys() {
+  // The last two are arkode's too (arkode_settings.cpp): the factor reuse of both.
+  static const std::vector<std::string> keys = {"scheme",
+                                                "rho_infinity",
+                                                "steps",
+                                                "tangent",
+                                                "petsc_options",
+                                                "max_step_halvings",
+                                                "preconditioner",
+                                                "krylov",
+                                                "refresh_contraction",
+                                                "refresh_iterations",
+                                                "reuse_factor",
+                                                "refresh_krylov"};
+  return keys;
+}
+
+std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const OptionReader& r) {
+  auto s = std::make_shared<PetscNewtonSettings>();
+  s->max_step_halvings = r.whole("max_step_halvings", s->max_step_halvings, 0, 20);
+  s->scheme = r.choice("scheme", s->scheme, kSchemes);
+  s->tangent = r.choice("tangent", s->tangent, kTangents);
+  s->preconditioner = r.choice("preconditioner", s->preconditioner, kPreconditioners);
+  s->krylov = r.choice("krylov", s->krylov, kKrylov);
+  if (s->tangent == S::Tangent::majoriser && s->preconditioner == S::Preconditioner::tangent)
+    r.fail("preconditioner",
+           "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "
+           "majoriser");
+  s->reuse_factor = r.boolean("reuse_factor", s->reuse_factor);
+  s->refresh_contraction = r.positive("refresh_contraction", s->refresh_contraction);
+  if (s->refresh_contraction >= 1)
+    r.fail("refresh_contraction", fmt::format("must be in (0, 1), got {}", s->refresh_contraction));
+  s->refresh_iterations = refresh_limit(r, "refresh_iterations", s->refresh_iterations);
+  s->refresh_krylov = refresh_limit(r, "refresh_krylov", s->refresh_krylov);
+  s->rho_infinity = r.non_negative("rho_infinity", s->rho_infinity);
+  if (s->rho_infinity > 1)
+    r.fail("rho_infinity", fmt::format("must be in [0, 1], got {}", s->rho_infinity));
+  if (r.has("steps")) {
+    const double steps = r.positive("steps", 0);
+    if (steps != std::floor(steps) || steps > 1e9)
+      r.fail("steps", fmt::format("must be a whole number of increments, got {}", steps));
+    s->steps = static_cast<int>(steps);
+  }
+  s->petsc_options = r.string("petsc_options", s->petsc_options);
+  return s;
+}
+
+std::string scheme_name(S::Scheme scheme) { return choice_name(scheme, kSchemes); }
+std::string tangent_name(S::Tangent tangent) { return choice_name(tangent, kTangents); }
+
+S::Scheme scheme_named(const std::string& name) {
+  for (const auto& [spelt, scheme] : kSchemes)
+    if (spelt == name) return scheme;
+  throw std::invalid_argument("no petsc_newton scheme '" + name + "'");
+}
+
+}  // namespace fissure
