@@ -1,8 +1,5 @@
 #include "app/checkpoint.hpp"
 
-#include <filesystem>
-#include <regex>
-
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
 
@@ -14,21 +11,16 @@ Config checkpoint_config(const CheckpointReader& checkpoint, const std::string& 
   return config;
 }
 
-void trim_output(const std::string& dir, double frames, double probes_bytes) {
-  const std::filesystem::path probes = std::filesystem::path(dir) / "probes.csv";
-  if (!std::filesystem::exists(probes) || std::filesystem::file_size(probes) < probes_bytes)
-    throw InputError(probes.string(), "",
-                     "shorter than when the checkpoint was written: cannot resume without the "
-                     "rows before it");
-  std::filesystem::resize_file(probes, static_cast<std::uintmax_t>(probes_bytes));
-  std::filesystem::remove(std::filesystem::path(dir) / "summary.json");
-  static const std::regex frame(R"((particles|surface|tets)_(\d{6})\.(vtu|obj))");
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    std::smatch m;
-    const std::string name = entry.path().filename().string();
-    if (std::regex_match(name, m, frame) && std::stod(m[2]) >= frames)
-      std::filesystem::remove(entry.path());
-  }
+void check_loop_sections(const CheckpointReader& checkpoint) {
+  for (const char* old :
+       {"run.schedule", "run.ledger", "run.frames", "run.frame_times", "run.probes_bytes"})
+    if (checkpoint.has(old))
+      throw InputError(
+          checkpoint.path(), old,
+          "written by an earlier version of fissure, which kept the run loop's state in "
+          "positional arrays; this version reads named sections (ledger.*, probes.*, frames.*, "
+          "checkpoint.*, energy_growth.*) and cannot resume it: go on with the version that "
+          "wrote it, or run the config again");
 }
 
 }  // namespace fissure

@@ -1,6 +1,6 @@
 #pragma once
 // Resuming a run (fissure run --resume OUT_DIR): the config a checkpoint was written with, and the
-// output folder taken back to the checkpoint.
+// check that its run-loop sections are the named ones this version reads.
 #include <string>
 
 #include "scene/config.hpp"
@@ -12,8 +12,9 @@ class CheckpointReader;
 // The config of the run that wrote `checkpoint`, writing into `dir`.
 Config checkpoint_config(const CheckpointReader& checkpoint, const std::string& dir);
 
-// Drops what a run wrote after its checkpoint: frames numbered `frames` and up (particles,
-// surface, tets), rows of probes.csv past its first `probes_bytes` bytes, and summary.json.
-void trim_output(const std::string& dir, double frames, double probes_bytes);
+// Throws InputError naming the file when `checkpoint` keeps the run loop's state in the
+// positional sections of earlier versions (run.schedule, run.ledger, ...), which this version
+// does not read: each observer of the loop now saves its own named sections.
+void check_loop_sections(const CheckpointReader& checkpoint);
 
 }  // namespace fissure

@@ -1,44 +1,102 @@
 #include "app/energy_ledger.hpp"
 
-#include <fmt/format.h>
-
+#include <algorithm>
 #include <cmath>
 
-#include "core/error.hpp"
+#include "app/energy.hpp"
 
 namespace fissure {
 
-double EnergyLedger::balance() const {
-  const double losses = damping_loss + contact_loss + plastic_dissipation + fracture_release;
-  const double work = gravity_work + constraint_work + collider_work;
-  return kinetic + elastic + losses - (initial + work);
+EnergyLedger::EnergyLedger(const Dynamics& dynamics) {
+  for (const auto& [name, booking] : dynamics.ledger_entries()) entries_.push_back({name, booking});
+  loads_ = entries_.size();
+  entries_.push_back({"plastic_dissipation", Booking::loss});
+  entries_.push_back({"fracture_release", Booking::loss});
 }
 
-double EnergyLedger::balance_error() const { return scale > 0 ? balance() / scale : 0.0; }
+void EnergyLedger::before_step(const RunParts& run) { before_ = run.state.position; }
+
+void EnergyLedger::after_step(const RunParts& run, const Step& step) {
+  const BookedStep booked{before_.data(), run.state.position.data(), step.h(),
+                          [&step] { return step.kinetic(); }};
+  const std::vector<double> amounts = run.dynamics.booked(booked);
+  for (std::size_t e = 0; e < loads_; ++e) entries_[e].value += amounts[e];
+  entries_[loads_].value = run.post_step.released().plastic;
+  entries_[loads_ + 1].value = run.post_step.released().fracture;
+}
+
+void EnergyLedger::sample(const RunParts& run) {
+  kinetic_ = kinetic_energy(run.scene.particles.mass, run.state.velocity);
+  elastic_ = run.model.elastic_energy(run.state.position.data());
+  if (!sampled_) {
+    initial_ = kinetic_ + elastic_;
+    sampled_ = true;
+  }
+  scale_ = std::max({scale_, kinetic_ + std::abs(elastic_), absolute_work()});
+}
+
+double EnergyLedger::sum(Booking booking) const {
+  double total = -0.0;
+  for (const Entry& e : entries_)
+    if (e.booking == booking) total += e.value;
+  return total;
+}
+
+double EnergyLedger::work() const { return sum(Booking::work); }
+
+double EnergyLedger::losses() const { return sum(Booking::loss); }
+
+double EnergyLedger::absolute_work(double from) const {
+  for (const Entry& e : entries_)
+    if (e.booking == Booking::work) from += std::abs(e.value);
+  return from;
+}
+
+double EnergyLedger::balance() const {
+  return kinetic_ + elastic_ + losses() - (initial_ + work());
+}
+
+double EnergyLedger::balance_error() const { return scale_ > 0 ? balance() / scale_ : 0.0; }
 
 std::vector<std::pair<std::string, double>> EnergyLedger::entries() const {
-  return {{"gravity_work", gravity_work},         {"constraint_work", constraint_work},
-          {"collider_work", collider_work},       {"damping_loss", damping_loss},
-          {"contact_loss", contact_loss},         {"plastic_dissipation", plastic_dissipation},
-          {"fracture_release", fracture_release}, {"balance_error", balance_error()}};
+  std::vector<std::pair<std::string, double>> all;
+  for (const Entry& e : entries_) all.emplace_back(e.name, e.value);
+  all.emplace_back("balance_error", balance_error());
+  return all;
 }
 
-std::vector<std::string> EnergyLedger::names() {
+std::vector<std::string> EnergyLedger::names() const {
   std::vector<std::string> names;
-  for (const auto& [name, value] : EnergyLedger().entries()) names.push_back(name);
+  for (const auto& [name, value] : entries()) names.push_back(name);
   return names;
 }
 
-std::vector<double> EnergyLedger::numbers() const {
-  return {kinetic,          elastic,      gravity_work, constraint_work,
-          collider_work,    damping_loss, contact_loss, plastic_dissipation,
-          fracture_release, initial,      scale};
+void EnergyLedger::summarize(RunSummary& summary) const {
+  summary.energy_drift = balance_error();
+  summary.energy = {{"kinetic", kinetic_},
+                    {"elastic", elastic_},
+                    {"initial", initial_},
+                    {"scale", scale_},
+                    {"balance", balance()}};
+  for (const auto& entry : entries()) summary.energy.push_back(entry);
 }
 
-EnergyLedger EnergyLedger::from_numbers(const std::vector<double>& n) {
-  if (n.size() != 11)
-    throw InputError("", "run.ledger", fmt::format("expected 11 numbers, got {}", n.size()));
-  return {n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7], n[8], n[9], n[10]};
+NamedArrays EnergyLedger::saved_state() const {
+  NamedArrays state = {{"ledger.kinetic", {kinetic_}},
+                       {"ledger.elastic", {elastic_}},
+                       {"ledger.initial", {initial_}},
+                       {"ledger.scale", {scale_}}};
+  for (const Entry& e : entries_) state.push_back({"ledger." + e.name, {e.value}});
+  return state;
+}
+
+void EnergyLedger::resume(const RunParts&, const NamedArrays& state) {
+  kinetic_ = saved_number(state, "ledger.kinetic");
+  elastic_ = saved_number(state, "ledger.elastic");
+  initial_ = saved_number(state, "ledger.initial");
+  scale_ = saved_number(state, "ledger.scale");
+  for (Entry& e : entries_) e.value = saved_number(state, "ledger." + e.name);
+  sampled_ = true;  // a checkpoint comes after the sample at t = 0
 }
 
 }  // namespace fissure

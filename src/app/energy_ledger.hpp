@@ -1,25 +1,42 @@
 #pragma once
 // The run's energy ledger: the energy stored in the particles, the work the loads put in, and
 // what the effects took out, so that E = K + Π balances: K + Π + losses = E(0) + work. What is
-// left over, relative to the run's energy scale, is the integrator's own energy error.
+// left over, relative to the run's energy scale, is the integrator's own energy error. A check
+// of the run loop (app/observer.hpp): it books every step; the probes sample it.
+//
+// Entries, in this order: one per load kind and the constraints (Dynamics::ledger_entries():
+// gravity_work, constraint_work, collider_work, damping_loss, contact_loss, then registered
+// loads), then the post-step's plastic_dissipation and fracture_release, then balance_error.
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "app/observer.hpp"
+
 namespace fissure {
 
-struct EnergyLedger {
-  double kinetic = 0, elastic = 0;  // K = ½ Σ m|v|², Π = Σ V W (Eq 10) at the last sample
-  // Work put into the particles since t = 0 [J]: by gravity (exact: −ΔU), by the constraints,
-  // and by the colliders (penalty and friction forces, Σ ∫ F·v dt).
-  double gravity_work = 0, constraint_work = 0, collider_work = 0;
-  // Energy taken out since t = 0 [J]: by mass-proportional damping (∫ 2cK dt), by self-contact
-  // (−∫ F·v dt: stored in the penalty while particles press together), by the plastic return
-  // map and by broken bonds (stored energy released at fixed positions).
-  double damping_loss = 0, contact_loss = 0, plastic_dissipation = 0, fracture_release = 0;
-  double initial = 0;  // K + Π at t = 0
-  double scale = 0;    // the largest K + |Π| and |work| seen at a sample: the unit of the error
+class EnergyLedger : public Observer {
+ public:
+  explicit EnergyLedger(const Dynamics& dynamics);
+  std::string name() const override { return "ledger"; }
+  void before_step(const RunParts& run) override;
+  // Adds the step's work and losses.
+  void after_step(const RunParts& run, const Step& step) override;
+  void summarize(RunSummary& summary) const override;
+  NamedArrays saved_state() const override;
+  void resume(const RunParts& run, const NamedArrays& state) override;
 
+  // Takes K and Π of the state (the first sample sets E(0)) and widens the scale.
+  void sample(const RunParts& run);
+  double kinetic() const { return kinetic_; }
+  double elastic() const { return elastic_; }
+  double initial() const { return initial_; }
+  double scale() const { return scale_; }
+  // Σ of the work entries since t = 0, `from` + Σ of their absolute values, and Σ of the losses
+  // [J], each added in the order of entries().
+  double work() const;
+  double absolute_work(double from = 0) const;
+  double losses() const;
   // K + Π + losses − (E(0) + work) [J].
   double balance() const;
   // balance() / scale (0 before anything moves).
@@ -27,10 +44,26 @@ struct EnergyLedger {
   // (name, value) of every entry, in the order of probes.csv's ledger columns.
   std::vector<std::pair<std::string, double>> entries() const;
   // The names alone.
-  static std::vector<std::string> names();
-  // Every field as numbers, and back (checkpoints).
-  std::vector<double> numbers() const;
-  static EnergyLedger from_numbers(const std::vector<double>& numbers);
+  std::vector<std::string> names() const;
+
+ private:
+  struct Entry {
+    std::string name;
+    Booking booking;
+    double value = 0;  // since t = 0 [J]
+  };
+  // Σ of the values booked as `booking`, from −0 (the exact additive identity).
+  double sum(Booking booking) const;
+
+  double kinetic_ = 0, elastic_ = 0;  // K = ½ Σ m|v|², Π = Σ V W (Eq 10) at the last sample
+  // The loads' and constraints' entries (Dynamics::ledger_entries()), then the stored energy the
+  // post-step released at fixed positions: by the plastic return map and by broken bonds.
+  std::vector<Entry> entries_;
+  std::size_t loads_;   // the first loads_ of entries_ are the loads'
+  double initial_ = 0;  // K + Π at t = 0
+  double scale_ = 0;    // the largest K + |Π| and |work| seen at a sample: the unit of the error
+  bool sampled_ = false;
+  std::vector<double> before_;  // y at the start of the step, for the load work
 };
 
 }  // namespace fissure

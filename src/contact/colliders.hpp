@@ -1,15 +1,21 @@
 #pragma once
-// Rigid colliders (spheres, planes, boxes) pushing on the particles with a penalty force and
-// regularised Coulomb friction. A dynamic sphere moves under the particles' reaction and gravity.
+// Rigid colliders (spheres, planes, boxes or any registered shape, contact/collider_registry.hpp)
+// pushing on the particles with a penalty force and regularised Coulomb friction. A dynamic
+// sphere moves under the particles' reaction and gravity.
+#include <array>
+#include <memory>
 #include <vector>
 
 #include "scene/scene.hpp"
 
 namespace fissure {
 
+class ColliderShape;  // contact/collider_shape.hpp
+
 class Colliders {
  public:
   explicit Colliders(const Scene& scene);
+  ~Colliders();
   // Adds the contact force on every particle to f (3N) and records each collider's reaction.
   void add_forces(const double* y, const double* v, double* f);
   // Moves the colliders by one step h: kinematic ones at their velocity, dynamic spheres by
@@ -23,13 +29,12 @@ class Colliders {
 
  private:
   struct State {
-    Collider shape;
+    Collider settings;
+    std::unique_ptr<ColliderShape> shape;
     std::array<double, 3> position;  // sphere centre, plane point, or box offset from its min
     std::array<double, 3> velocity;
     std::array<double, 3> reaction;  // force the particles exert on it, last add_forces
   };
-  // Penetration depth and outward normal of a point against collider c (depth ≤ 0: apart).
-  double penetration(const State& c, const double* y, double radius, double* normal) const;
 
   std::vector<State> state_;
   std::vector<double> radius_;     // contact radius per particle: ½ V^(1/3)

@@ -23,7 +23,8 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
                                              double h, double load_factor) {
   inertia_ = scheme.inertia();
   target_ = scheme.target();
-  dynamics_.external_forces(state.position.data(), state.velocity.data(), external_.data());
+  dynamics_.external_forces(state.time, state.position.data(), state.velocity.data(),
+                            external_.data());
   for (double& f : external_) f *= load_factor;
   // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
   // ωh ≫ 1 at large steps carry large velocities), from y: whichever has the lower potential.

@@ -38,6 +38,12 @@ class CheckpointReader {
   explicit CheckpointReader(const std::string& path);
   bool has(const std::string& name) const { return sections_.count(name) > 0; }
   const std::string& path() const { return path_; }
+  // The names of every section, in order.
+  std::vector<std::string> names() const {
+    std::vector<std::string> names;
+    for (const auto& [name, bytes] : sections_) names.push_back(name);
+    return names;
+  }
   // Every section whose name starts with `prefix`, as numbers.
   NamedArrays arrays(const std::string& prefix) const;
   // Throw InputError naming the file and section when it is missing or has the wrong size.

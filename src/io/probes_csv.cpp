@@ -6,10 +6,8 @@
 
 namespace fissure {
 
-ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
-                     const std::vector<std::string>& extra_columns, bool append)
-    : particles_(particles),
-      file_(path, append ? OutputFile::Mode::append : OutputFile::Mode::truncate) {
+std::vector<std::vector<int>> probe_members(const Config& config, const Particles& particles) {
+  std::vector<std::vector<int>> all;
   for (std::size_t p = 0; p < config.probes.size(); ++p) {
     std::vector<int> members;
     for (int i = 0; i < particles.count(); ++i)
@@ -17,8 +15,17 @@ ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Partic
     if (members.empty())
       throw InputError(config.file, fmt::format("probes[{}].region", p),
                        fmt::format("probe '{}' contains no particle", config.probes[p].name));
-    members_.push_back(std::move(members));
+    all.push_back(std::move(members));
   }
+  return all;
+}
+
+ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
+                     std::vector<std::vector<int>> members,
+                     const std::vector<std::string>& extra_columns, bool append)
+    : particles_(particles),
+      file_(path, append ? OutputFile::Mode::append : OutputFile::Mode::truncate),
+      members_(std::move(members)) {
   if (append) return;
   std::ostream& out = file_.stream();
   out << "time,kinetic_energy,elastic_energy";

@@ -12,13 +12,18 @@
 
 namespace fissure {
 
+// The particles of each probe (config.probes), whose reference position lies in its region;
+// throws InputError if a probe region holds no particle. Touches no file.
+std::vector<std::vector<int>> probe_members(const Config& config, const Particles& particles);
+
 class ProbesCsv {
  public:
-  // Throws InputError if a probe region holds no particle. With `append` the rows go after
-  // those already in the file (a resumed run) and no header is written. Each row reaches the
-  // file as it is written; OutputError when the file refuses it.
+  // `members` from probe_members(). With `append` the rows go after those already in the file (a
+  // resumed run) and no header is written. Each row reaches the file as it is written;
+  // OutputError when the file refuses it.
   ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
-            const std::vector<std::string>& extra_columns, bool append = false);
+            std::vector<std::vector<int>> members, const std::vector<std::string>& extra_columns,
+            bool append = false);
   void write_row(double time, double kinetic_energy, double elastic_energy,
                  const std::vector<double>& position, const std::vector<double>& extra);
 

@@ -103,7 +103,10 @@ class Model {
   std::atomic<std::size_t> revision_{0};
 };
 
-// The model the scene's bodies ask for (material.model), set up for its particles.
+// The model the scene's bodies ask for (material.model), set up for its particles. The model
+// refers to the scene's particles and families, so the scene must outlive it; a temporary scene
+// is refused at compile time.
 std::unique_ptr<Model> make_model(const Scene& scene);
+std::unique_ptr<Model> make_model(const Scene&& scene) = delete;
 
 }  // namespace fissure

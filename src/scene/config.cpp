@@ -197,43 +197,33 @@ AnisotropySettings read_anisotropy(const YamlReader& r, const YAML::Node& node,
   return a;
 }
 
+// A colliders entry: exactly one shape key, which the shape's registered parser reads
+// (contact/collider_registry.hpp), and the keys every shape shares, as far as the shape allows.
 Collider read_collider(const YamlReader& r, const YAML::Node& node, const std::string& path) {
-  r.check_keys(node, path, {"sphere", "plane", "box", "velocity", "mass"});
-  const int shapes = static_cast<bool>(node["sphere"]) + static_cast<bool>(node["plane"]) +
-                     static_cast<bool>(node["box"]);
-  if (shapes != 1) r.fail(path, "give exactly one of sphere, plane, box");
+  const auto& shapes = collider_option_parsers();
+  std::vector<std::string> allowed;
+  for (const auto& shape : shapes) allowed.push_back(shape.name);
+  std::vector<std::string> names = allowed;
+  allowed.insert(allowed.end(), {"velocity", "mass"});
+  r.check_keys(node, path, allowed);
+  const ColliderOptionParser* parser = nullptr;
+  int given = 0;
+  for (const auto& shape : shapes)
+    if (node[shape.name]) ++given, parser = &shape;
+  if (given != 1) r.fail(path, fmt::format("give exactly one of {}", fmt::join(names, ", ")));
   Collider c;
-  if (const auto n = node["sphere"]) {
-    const std::string p = join(path, "sphere");
-    r.check_keys(n, p, {"center", "radius"});
-    c.kind = Collider::Kind::sphere;
-    c.center = r.vec3(n["center"], join(p, "center"));
-    c.radius = r.positive(n["radius"], join(p, "radius"));
-  } else if (const auto n = node["plane"]) {
-    const std::string p = join(path, "plane");
-    r.check_keys(n, p, {"point", "normal"});
-    c.kind = Collider::Kind::plane;
-    c.point = r.vec3(n["point"], join(p, "point"));
-    c.normal = r.vec3(n["normal"], join(p, "normal"));
-    const double length = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] +
-                                    c.normal[2] * c.normal[2]);
-    if (length == 0) r.fail(join(p, "normal"), "must not be zero");
-    for (double& v : c.normal) v /= length;
-  } else {
-    const std::string p = join(path, "box");
-    r.check_keys(node["box"], p, {"min", "max"});
-    c.kind = Collider::Kind::box;
-    c.min = r.vec3(node["box"]["min"], join(p, "min"));
-    c.max = r.vec3(node["box"]["max"], join(p, "max"));
-    check_box(r, c.min, c.max, p);
-  }
+  c.shape = parser->name;
+  const std::string p = join(path, parser->name);
+  const YAML::Node own = node[parser->name];
+  r.check_keys(own, p, parser->keys);
+  c.options = parser->parse ? parser->parse(OptionReader(r, own, p))
+                            : std::make_shared<const ColliderOptions>();
   if (node["velocity"]) {
-    if (c.kind == Collider::Kind::plane) r.fail(join(path, "velocity"), "a plane does not move");
+    if (!c.options->moves()) r.fail(join(path, "velocity"), "a " + c.shape + " does not move");
     c.velocity = r.vec3(node["velocity"], join(path, "velocity"));
   }
   if (const auto m = node["mass"]) {
-    if (c.kind != Collider::Kind::sphere)
-      r.fail(join(path, "mass"), "only a sphere can be dynamic");
+    if (!c.options->can_be_dynamic()) r.fail(join(path, "mass"), "only a sphere can be dynamic");
     if (!(m.IsScalar() && m.Scalar() == "kinematic")) {
       c.kinematic = false;
       c.mass = r.positive(m, join(path, "mass"));
@@ -468,10 +458,11 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     }
   }
   const YAML::Node out = root["output"];
-  if (out)
-    r.check_keys(
-        out, "output",
-        {"dir", "every", "probe_every", "checkpoint_every", "surface", "tets", "surface_motion"});
+  std::vector<std::string> output_keys = {"dir",     "every", "probe_every",   "checkpoint_every",
+                                          "surface", "tets",  "surface_motion"};
+  for (const auto& parser : output_option_parsers())
+    output_keys.insert(output_keys.end(), parser.keys.begin(), parser.keys.end());
+  if (out) r.check_keys(out, "output", output_keys);
   c.output.dir = out && out["dir"] ? r.string(out["dir"], "output.dir") : "out/" + c.name;
   if (c.output.dir.empty()) r.fail("output.dir", "must not be empty");
   c.output.every =
@@ -490,6 +481,10 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     else if (motion != "position")
       r.fail("output.surface_motion", "expected `position` or `velocity`, got '" + motion + "'");
   }
+  const YAML::Node own = out ? out : YAML::Node(YAML::NodeType::Map);
+  for (const auto& parser : output_option_parsers())
+    if (parser.parse)
+      c.output.options.emplace_back(parser.name, parser.parse(OptionReader(r, own, "output")));
   if (root["render"]) c.render = read_render_settings(r, root["render"]);
   return c;
 }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/option_parsers.hpp"
@@ -97,15 +98,11 @@ struct Crack {
 
 // A rigid obstacle the particles collide with (penalty contact with friction).
 struct Collider {
-  enum class Kind { sphere, plane, box } kind = Kind::sphere;
-  Vec3 center{};      // sphere
-  double radius = 0;  // sphere
-  Vec3 point{};       // plane
-  Vec3 normal{};      // plane, unit, pointing to the free side
-  Vec3 min{}, max{};  // box
-  Vec3 velocity{};    // sphere, box: constant (kinematic) or initial (dynamic) velocity
+  std::string shape;  // its key: sphere, plane, box or a registered one
+  std::shared_ptr<const ColliderOptions> options;  // the shape's own, as its parser read them
+  Vec3 velocity{};  // constant (kinematic) or initial (dynamic) velocity, where the shape moves
   bool kinematic = true;
-  double mass = 0;  // dynamic sphere
+  double mass = 0;  // dynamic
 };
 
 struct ContactSettings {
@@ -154,6 +151,10 @@ struct OutputSettings {
   // How mesh vertices follow the particles: `position` (mass-weighted displacement) or
   // `velocity` (Eqs 20–22, integrated every step).
   enum class SurfaceMotion { position, velocity } surface_motion = SurfaceMotion::position;
+  // The registered outputs' own settings, by output name, as their parsers read them
+  // (app/output_registry.hpp); the keys above are the built-in outputs', which other layers
+  // read too.
+  std::vector<std::pair<std::string, std::shared_ptr<const OutputOptions>>> options;
   bool embedded_mesh() const { return surface || tets; }
 };
 

@@ -25,11 +25,19 @@ void add(OptionParser<Options> parser) {
 
 void register_option_parser(IntegratorOptionParser parser) { add(std::move(parser)); }
 void register_option_parser(ModelOptionParser parser) { add(std::move(parser)); }
+void register_option_parser(ColliderOptionParser parser) { add(std::move(parser)); }
+void register_option_parser(OutputOptionParser parser) { add(std::move(parser)); }
 
 const std::vector<IntegratorOptionParser>& integrator_option_parsers() {
   return parsers<IntegratorOptions>();
 }
 
 const std::vector<ModelOptionParser>& model_option_parsers() { return parsers<ModelOptions>(); }
+
+const std::vector<ColliderOptionParser>& collider_option_parsers() {
+  return parsers<ColliderOptions>();
+}
+
+const std::vector<OutputOptionParser>& output_option_parsers() { return parsers<OutputOptions>(); }
 
 }  // namespace fissure

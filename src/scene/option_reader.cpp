@@ -51,4 +51,12 @@ std::string OptionReader::string(const std::string& key, const std::string& fall
   return has(key) ? reader_.string(node_[key], path(key)) : fallback;
 }
 
+double OptionReader::positive(const std::string& key) const {
+  return reader_.positive(node_.IsMap() ? node_[key] : YAML::Node(), path(key));
+}
+
+std::array<double, 3> OptionReader::vec3(const std::string& key) const {
+  return reader_.vec3(node_.IsMap() ? node_[key] : YAML::Node(), path(key));
+}
+
 }  // namespace fissure

@@ -1,8 +1,9 @@
 #pragma once
-// The options of one part of a scene (an integrator, a model) as its own parser reads them:
-// typed getters with defaults, range checks and choices, every error an InputError naming the
-// file, the key path and the reason. No YAML: the parsers live next to the parts they configure
-// (integrators/, model/), and only the config layer constructs a reader.
+// The options of one part of a scene (an integrator, a model, a collider's shape) as its own parser
+// reads them: typed getters with defaults, range checks and choices, every error an InputError
+// naming the file, the key path and the reason. No YAML: the parsers live next to the parts they
+// configure (integrators/, model/), and only the config layer constructs a reader.
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,9 @@ class OptionReader {
   int whole(const std::string& key, int fallback, int low, int high) const;
   bool boolean(const std::string& key, bool fallback) const;
   std::string string(const std::string& key, const std::string& fallback) const;
+  // Required ones: an absent key fails as "missing" (a number) or "expected [x, y, z]".
+  double positive(const std::string& key) const;
+  std::array<double, 3> vec3(const std::string& key) const;
   // One of `choices` by name, as its value; a name not among them fails with the nearest one.
   template <class Choice>
   Choice choice(const std::string& key, Choice fallback,

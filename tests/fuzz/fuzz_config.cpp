@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "contact/collider_registry.hpp"
 #include "core/error.hpp"
 #include "integrators/petsc_newton_settings.hpp"
 #include "scene/config.hpp"
@@ -12,7 +13,8 @@ namespace {
 
 // The lean library has no integrators or models, whose registries name the built-in ones
 // (integrators/registry.cpp, model/model_registry.cpp): their option parsers are registered
-// here, petsc_newton's the real one (PETSc-free); arkode's needs SUNDIALS and is left out.
+// here, petsc_newton's the real one (PETSc-free); arkode's needs SUNDIALS and is left out. The
+// collider shapes' registry is in the lean library and registers the real parsers on first use.
 [[maybe_unused]] const bool registered = [] {
   using fissure::register_option_parser;
   register_option_parser(fissure::IntegratorOptionParser{"symplectic_euler", {}, nullptr});
@@ -21,7 +23,7 @@ namespace {
       "petsc_newton", fissure::petsc_newton_keys(), fissure::read_petsc_newton_settings});
   register_option_parser(fissure::ModelOptionParser{"lps", {}, nullptr});
   register_option_parser(fissure::ModelOptionParser{"paper", {}, nullptr});
-  return true;
+  return !fissure::collider_names().empty();
 }();
 
 }  // namespace

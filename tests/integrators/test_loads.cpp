@@ -237,7 +237,7 @@ TEST(Loads, OverlappingConstraintsLaterOverridesEarlierUntilReleased) {
   }
   // m g Δz: holding the weight m g while moving up by 1 m/s × dt; relative 1e-9 covers the
   // round-off internal forces of a rigid body.
-  const double work = dynamics.load_work(before.data(), state.position.data()).constraints;
+  const double work = dynamics.constraints().work(before.data(), state.position.data());
   EXPECT_NEAR(work, mass * 9.81 * dt, 1e-9 * mass * 9.81 * dt);
   while (state.time < 0.01 - 1e-12) integrator->step(dynamics, state, dt);
   const auto released_at = state.position;

@@ -79,16 +79,20 @@ TEST(PureEvaluation, DilatationIsTheCalibratedOneAtTheGivenPositions) {
   for (double t : theta) EXPECT_NEAR(t / (3 * eps), 1.0, 1.2e-7);
 }
 
+// A model refers to its scene's particles and families, so each scene outlives its model.
 TEST(PureEvaluation, CapabilitiesArePresentExactlyWhereTheModelHasThem) {
-  auto elastic = make_model(block("lps", ""));
+  const Scene elastic_scene = block("lps", "");
+  auto elastic = make_model(elastic_scene);
   EXPECT_NE(elastic->stiffness(), nullptr);
   EXPECT_EQ(elastic->plastic_flow(), nullptr);
-  auto plastic = make_model(block("lps", ", plasticity: {yield_stress: 1.0e4}"));
+  const Scene plastic_scene = block("lps", ", plasticity: {yield_stress: 1.0e4}");
+  auto plastic = make_model(plastic_scene);
   EXPECT_NE(plastic->stiffness(), nullptr);
   ASSERT_NE(plastic->plastic_flow(), nullptr);
   EXPECT_EQ(plastic->plastic_flow()->plastic_extension().size(),
             plastic->families().directed_bonds());
-  auto paper = make_model(block("paper", ""));
+  const Scene paper_scene = block("paper", "");
+  auto paper = make_model(paper_scene);
   EXPECT_EQ(paper->stiffness(), nullptr);
   EXPECT_EQ(paper->plastic_flow(), nullptr);
 }

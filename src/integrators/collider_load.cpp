@@ -1,0 +1,37 @@
+#include "integrators/collider_load.hpp"
+
+#include "core/error.hpp"
+#include "integrators/force_sums.hpp"
+#include "integrators/load_registry.hpp"
+
+namespace fissure {
+
+ColliderLoad::ColliderLoad(const Scene& scene)
+    : colliders_(scene), force_(3 * scene.particles.mass.size()) {}
+
+void ColliderLoad::add(double, const double* y, const double* v, double* f) {
+  std::fill(force_.begin(), force_.end(), 0.0);
+  colliders_.add_forces(y, v, force_.data());
+  add_to(force_, f);
+}
+
+double ColliderLoad::booked(const BookedStep& step) const {
+  return work_of(force_, step.before, step.after);
+}
+
+NamedArrays ColliderLoad::saved_state() const {
+  return {{"dynamics.colliders", colliders_.saved_state()}};
+}
+
+void ColliderLoad::restore_state(const NamedArrays& state) {
+  const std::vector<double>* c = find_array(state, "dynamics.colliders");
+  if (!c) throw InputError("", "dynamics.colliders", "missing from the checkpoint");
+  colliders_.restore_state(*c);
+}
+
+std::unique_ptr<Load> make_collider_load(const Scene& scene) {
+  if (scene.config.colliders.empty()) return nullptr;
+  return std::make_unique<ColliderLoad>(scene);
+}
+
+}  // namespace fissure
