@@ -1,25 +1,17 @@
 #include "contact/collider_registry.hpp"
 
-#include <stdexcept>
+#include "scene/kind_list.hpp"
 
 namespace fissure {
 
 namespace {
 
-void add(std::vector<ColliderKind>& kinds, ColliderKind kind) {
-  for (const auto& k : kinds)
-    if (k.name == kind.name)
-      throw std::logic_error("the collider shape '" + kind.name + "' is registered twice");
-  register_option_parser(ColliderOptionParser{kind.name, kind.keys, kind.parse});
-  kinds.push_back(std::move(kind));
-}
-
 std::vector<ColliderKind>& kinds() {
   static std::vector<ColliderKind> registered = [] {
     std::vector<ColliderKind> builtin;
-    add(builtin, sphere_collider_kind());
-    add(builtin, plane_collider_kind());
-    add(builtin, box_collider_kind());
+    add_kind(builtin, sphere_collider_kind(), "collider shape");
+    add_kind(builtin, plane_collider_kind(), "collider shape");
+    add_kind(builtin, box_collider_kind(), "collider shape");
     return builtin;
   }();
   return registered;
@@ -27,13 +19,9 @@ std::vector<ColliderKind>& kinds() {
 
 }  // namespace
 
-void register_collider(ColliderKind kind) { add(kinds(), std::move(kind)); }
+void register_collider(ColliderKind kind) { add_kind(kinds(), std::move(kind), "collider shape"); }
 
-std::vector<std::string> collider_names() {
-  std::vector<std::string> names;
-  for (const auto& kind : kinds()) names.push_back(kind.name);
-  return names;
-}
+std::vector<std::string> collider_names() { return kind_names(kinds()); }
 
 std::unique_ptr<ColliderShape> make_collider_shape(const Collider& collider) {
   for (const auto& kind : kinds())

@@ -337,7 +337,7 @@ void warn_unused_options(Solver& s, const std::string& file) {
   PetscInt count = 0;
   char** names = nullptr;
   char** values = nullptr;
-  if (PetscOptionsLeftGet(s.options, &count, &names, &values) != 0) return;
+  petsc_check(PetscOptionsLeftGet(s.options, &count, &names, &values), "PetscOptionsLeftGet");
   for (PetscInt k = 0; k < count; ++k)
     fmt::print(stderr, "warning: {}: integrator.petsc_options: PETSc did not use -{}\n", file,
                names[k]);

@@ -5,27 +5,20 @@
 #include "integrators/petsc_newton.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "integrators/velocity_verlet.hpp"
+#include "scene/kind_list.hpp"
 #include "scene/unknown_choice.hpp"
 
 namespace fissure {
 
 namespace {
 
-void add(std::vector<IntegratorKind>& kinds, IntegratorKind kind) {
-  for (const auto& k : kinds)
-    if (k.name == kind.name)
-      throw std::logic_error("the integrator '" + kind.name + "' is registered twice");
-  register_option_parser(IntegratorOptionParser{kind.name, kind.keys, kind.parse});
-  kinds.push_back(std::move(kind));
-}
-
 std::vector<IntegratorKind>& kinds() {
   static std::vector<IntegratorKind> registered = [] {
     std::vector<IntegratorKind> builtin;
-    add(builtin, symplectic_euler_kind());
-    add(builtin, velocity_verlet_kind());
-    add(builtin, petsc_newton_kind());
-    add(builtin, arkode_kind());
+    add_kind(builtin, symplectic_euler_kind(), "integrator");
+    add_kind(builtin, velocity_verlet_kind(), "integrator");
+    add_kind(builtin, petsc_newton_kind(), "integrator");
+    add_kind(builtin, arkode_kind(), "integrator");
     return builtin;
   }();
   return registered;
@@ -33,13 +26,9 @@ std::vector<IntegratorKind>& kinds() {
 
 }  // namespace
 
-void register_integrator(IntegratorKind kind) { add(kinds(), std::move(kind)); }
+void register_integrator(IntegratorKind kind) { add_kind(kinds(), std::move(kind), "integrator"); }
 
-std::vector<std::string> integrator_names() {
-  std::vector<std::string> names;
-  for (const auto& kind : kinds()) names.push_back(kind.name);
-  return names;
-}
+std::vector<std::string> integrator_names() { return kind_names(kinds()); }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& type, const std::string& file) {
   IntegratorSettings settings;

@@ -2,30 +2,21 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
-
 #include "core/error.hpp"
 #include "model/lps_model.hpp"
 #include "model/paper_model.hpp"
+#include "scene/kind_list.hpp"
 #include "scene/scene.hpp"
 
 namespace fissure {
 
 namespace {
 
-void add(std::vector<ModelKind>& kinds, ModelKind kind) {
-  for (const auto& k : kinds)
-    if (k.name == kind.name)
-      throw std::logic_error("the model '" + kind.name + "' is registered twice");
-  register_option_parser(ModelOptionParser{kind.name, kind.keys, kind.parse});
-  kinds.push_back(std::move(kind));
-}
-
 std::vector<ModelKind>& kinds() {
   static std::vector<ModelKind> registered = [] {
     std::vector<ModelKind> builtin;
-    add(builtin, lps_model_kind());
-    add(builtin, paper_model_kind());
+    add_kind(builtin, lps_model_kind(), "model");
+    add_kind(builtin, paper_model_kind(), "model");
     return builtin;
   }();
   return registered;
@@ -33,13 +24,9 @@ std::vector<ModelKind>& kinds() {
 
 }  // namespace
 
-void register_model(ModelKind kind) { add(kinds(), std::move(kind)); }
+void register_model(ModelKind kind) { add_kind(kinds(), std::move(kind), "model"); }
 
-std::vector<std::string> model_names() {
-  std::vector<std::string> names;
-  for (const auto& kind : kinds()) names.push_back(kind.name);
-  return names;
-}
+std::vector<std::string> model_names() { return kind_names(kinds()); }
 
 std::unique_ptr<Model> make_model(const Scene& scene) {
   const Particles& particles = scene.particles;

@@ -6,6 +6,8 @@
 // path, and what the shape does not allow (a velocity) is refused by name.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "contact/collider_registry.hpp"
 #include "contact/colliders.hpp"
 #include "contact/contact_particles.hpp"
@@ -100,6 +102,13 @@ TEST(ColliderRecipe, BadValuesFailWithTheKeyPath) {
   EXPECT_NE(e.find("colliders[0]: give exactly one of sphere, plane, box, floor"),
             std::string::npos)
       << e;
+}
+
+// A name is registered once: a second shape called sphere would make "sphere" ambiguous.
+TEST(ColliderRecipe, ANameIsRegisteredOnce) {
+  ASSERT_TRUE(registered);
+  EXPECT_THROW(register_collider(sphere_collider_kind()), std::logic_error);
+  EXPECT_THROW(register_collider(plane_collider_kind()), std::logic_error);
 }
 
 }  // namespace
