@@ -44,7 +44,7 @@ class Constraints {
   // ω × R(ωt)(x0 − centre) for a rotating one (x0 the reference position).
   Vec3 held_velocity(std::size_t k, int c) const;
 
-  std::vector<double> mass_;
+  const std::vector<double>& mass_;  // the scene's, which outlives the dynamics
   std::vector<Constraint> constraints_;
   std::vector<int> held_particles_;          // particles inside at least one constraint region
   std::vector<double> held_reference_;       // their reference positions, 3 per held particle

@@ -17,7 +17,9 @@ namespace fissure {
 
 class Dynamics {
  public:
+  // Its loads and constraints refer to the scene's masses, so the scene must outlive it.
   Dynamics(const Scene& scene, Model& model);
+  Dynamics(const Scene&& scene, Model& model) = delete;
 
   // a = (F_int(y) + Σ forces)/m + Σ accelerations (g − c v), zero where a constraint holds the
   // particle at time t. The loads keep their forces and the constraints their reactions for the

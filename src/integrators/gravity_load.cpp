@@ -28,7 +28,7 @@ class GravityLoad : public Load {
   }
 
  private:
-  std::vector<double> mass_;
+  const std::vector<double>& mass_;  // the scene's, which outlives the dynamics
   Vec3 g_;
 };
 

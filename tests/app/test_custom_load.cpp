@@ -15,6 +15,7 @@
 #include "app/simulation.hpp"
 #include "integrators/force_sums.hpp"
 #include "integrators/load_registry.hpp"
+#include "support/free_block.hpp"
 
 namespace fissure {
 namespace {
@@ -44,14 +45,7 @@ const bool registered = [] {
   return true;
 }();
 
-const char* kBlock = R"(
-time: {end: 0.1, dt: 0.001}
-bodies:
-  - geometry: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
-    resolution: 0.05
-    material: {density: 1000, bulk_modulus: 1.0e5, shear_modulus: 5.0e4}
-output: {every: 0.1, probe_every: 0.01}
-)";
+const std::string kBlock = test::free_block_yaml("output: {every: 0.1, probe_every: 0.01}\n");
 
 TEST(CustomLoad, BodyForceIsFeltByEveryIntegratorAndBookedInTheLedger) {
   ASSERT_TRUE(registered);

@@ -7,20 +7,14 @@
 
 #include "app/run_fissure.hpp"
 #include "stability/stability_case.hpp"
+#include "support/free_block.hpp"
 #include "support/two_particles.hpp"
 
 namespace fissure {
 namespace {
 
-const char* kFreeFall = R"(
-time: {end: 0.1, dt: 0.001}
-gravity: [0, 0, -9.81]
-bodies:
-  - geometry: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
-    resolution: 0.05
-    material: {density: 1000, bulk_modulus: 1.0e5, shear_modulus: 5.0e4}
-output: {every: 0.1, probe_every: 0.01}
-)";
+const std::string kFreeFall =
+    test::free_block_yaml("gravity: [0, 0, -9.81]\noutput: {every: 0.1, probe_every: 0.01}\n");
 
 TEST(EnergyLedger, FreeFallBooksGravityWorkExactly) {
   for (const std::string type : {"symplectic_euler", "velocity_verlet"}) {
