@@ -383,6 +383,9 @@ IntegratorSettings read_integrator(const YamlReader& r, const YAML::Node& node) 
 void check_load_ramp(const YamlReader& r, const TimeSettings& t, const IntegratorSettings& s) {
   const int ramp = s.options ? s.options->load_increments() : 0;
   if (ramp == 0 || t.dt_auto) return;
+  // Compared as a ratio first: a time.dt tiny against time.end (more steps than a long holds)
+  // passes here and is refused by the run's step limit (app/time_step.cpp).
+  if (t.end / t.dt >= ramp) return;
   const long increments = steps_to(t.end, t.dt);
   if (increments >= ramp) return;
   r.fail("time.dt",
