@@ -58,6 +58,36 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
     }
   for (int i = 0; i < n; ++i) update_damage(i);
   broken_pairs_ = removed / 2;
+  if (!model_.plastic_flow()) {
+    prefilter_.resize(families_.directed_bonds());
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) update_prefilter(i);
+  }
+}
+
+// The criterion e − e^p > s_c(1 + αφ_i)ω|ξ| of find_exact is |y_j − y_i| > ℓ_c with e^p = 0;
+// the bound is ℓ_c(1 − 1e-6), squared and rounded down to single precision, so that every bond
+// the exact test (rounded in double) would break passes it.
+void BondBreaking::update_prefilter(int i) {
+  const double scale = critical_stretch_[i] * (1.0 + alpha_[i] * damage_[i]);
+  const bool anisotropic = !reach_.empty();
+  constexpr float never = std::numeric_limits<float>::infinity();
+  for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
+    if (broken_[b] || scale == std::numeric_limits<double>::infinity()) {
+      prefilter_[b] = never;
+      continue;
+    }
+    const double length =
+        families_.reference_length[b] + scale * (anisotropic ? reach_[b] : horizon_[i]);
+    const double bound = length > 0 ? (1.0 - 1e-6) * length : 0.0;
+    const double squared = bound * bound;
+    // A bound past single precision's range stays finite, so an overflowing |y_j − y_i|² (or +∞)
+    // still reaches the exact test.
+    const float rounded = squared < std::numeric_limits<float>::max()
+                              ? static_cast<float>(squared)
+                              : std::numeric_limits<float>::max();
+    prefilter_[b] = length > 0 ? std::min(rounded, std::nextafter(rounded, 0.0f)) : -1.0f;
+  }
 }
 
 void BondBreaking::remove(int i, int b) {
@@ -73,34 +103,56 @@ void BondBreaking::update_damage(int i) {
 
 std::size_t BondBreaking::run(const double* y) { return find(y) > 0 ? apply() : 0; }
 
-std::size_t BondBreaking::find(const double* y) {
-  const int n = static_cast<int>(intact_.size());
+// s^ω_ij = s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19), against a threshold that grows with
+// damage as the paper's text asks ("continuously increasing the crack threshold as the material
+// gets damaged", docs/model.md): the bond breaks when e − e^p exceeds s_c (1 + αφ_i) ω|ξ|,
+// with ω|ξ| = δ (Eq 5) or δ|ξ|/|Gξ| (Eq 17). Tension only: a compressed bond never breaks.
+// Marks row i's exceeded bonds and returns how many.
+std::size_t BondBreaking::find_exact(const double* y, int i) {
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
   const PlasticFlow* plastic_flow = model_.plastic_flow();
   const double* plastic = plastic_flow ? plastic_flow->plastic_extension().data() : nullptr;
-  const bool plastic_bonds = plastic != nullptr;
-  std::size_t exceeded = 0;
-  // s^ω_ij = s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19), against a threshold that grows with
-  // damage as the paper's text asks ("continuously increasing the crack threshold as the material
-  // gets damaged", docs/model.md): the bond breaks when e − e^p exceeds s_c (1 + αφ_i) ω|ξ|,
-  // with ω|ξ| = δ (Eq 5) or δ|ξ|/|Gξ| (Eq 17). Tension only: a compressed bond never breaks.
   const bool anisotropic = !reach_.empty();
+  const double scale = critical_stretch_[i] * (1.0 + alpha_[i] * damage_[i]);
+  std::size_t exceeded = 0;
+  for (int b = off[i]; b < off[i + 1]; ++b) {
+    if (broken_[b]) continue;
+    const double* yi = y + 3 * i;
+    const double* yj = y + 3 * nbr[b];
+    const double e =
+        std::sqrt((yj[0] - yi[0]) * (yj[0] - yi[0]) + (yj[1] - yi[1]) * (yj[1] - yi[1]) +
+                  (yj[2] - yi[2]) * (yj[2] - yi[2])) -
+        xi[b] - (plastic ? plastic[b] : 0.0);
+    exceeded_[b] = e > scale * (anisotropic ? reach_[b] : horizon_[i]);
+    exceeded += exceeded_[b];
+  }
+  return exceeded;
+}
+
+// Every row with plasticity; without, only the rows where some bond passes the prefilter (the
+// others cannot break: their exceeded_ stay 0, as apply() leaves them).
+std::size_t BondBreaking::find(const double* y) {
+  const int n = static_cast<int>(intact_.size());
+  const int* off = families_.offsets.data();
+  const int* nbr = families_.neighbors.data();
+  const float* prefilter = prefilter_.data();
+  const bool filtered = !prefilter_.empty();
+  std::size_t exceeded = 0;
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double scale = critical_stretch_[i] * (1.0 + alpha_[i] * damage_[i]);
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      if (broken_[b]) continue;
-      const double* yi = y + 3 * i;
-      const double* yj = y + 3 * nbr[b];
-      const double e =
-          std::sqrt((yj[0] - yi[0]) * (yj[0] - yi[0]) + (yj[1] - yi[1]) * (yj[1] - yi[1]) +
-                    (yj[2] - yi[2]) * (yj[2] - yi[2])) -
-          xi[b] - (plastic_bonds ? plastic[b] : 0.0);
-      exceeded_[b] = e > scale * (anisotropic ? reach_[b] : horizon_[i]);
-      exceeded += exceeded_[b];
+    if (filtered) {
+      const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+      bool candidate = false;
+      for (int b = off[i]; b < off[i + 1]; ++b) {
+        const double* yj = y + 3 * nbr[b];
+        const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+        candidate |= d0 * d0 + d1 * d1 + d2 * d2 > prefilter[b];
+      }
+      if (!candidate) continue;
     }
+    exceeded += find_exact(y, i);
   }
   changed_.clear();
   return exceeded;
@@ -123,6 +175,7 @@ std::size_t BondBreaking::apply() {
       }
     if (changed) {
       update_damage(i);
+      if (!prefilter_.empty()) update_prefilter(i);
 #pragma omp critical(fissure_changed_rows)
       changed_.push_back(i);
     }
@@ -143,6 +196,7 @@ void BondBreaking::restore(const std::vector<std::uint8_t>& broken) {
       total += broken_[b];
     }
     update_damage(i);
+    if (!prefilter_.empty()) update_prefilter(i);
   }
   changed_.clear();
   broken_pairs_ = total / 2;

@@ -37,6 +37,10 @@ class BondBreaking {
  private:
   void remove(int i, int b);
   void update_damage(int i);
+  // Row i's lower bounds of the squared deformed length at which a bond can break, after its
+  // damage changed (elastic scenes only: with plasticity e^p moves every step).
+  void update_prefilter(int i);
+  std::size_t find_exact(const double* y, int i);
 
   const Families& families_;
   Model& model_;
@@ -46,9 +50,14 @@ class BondBreaking {
   std::vector<float> reach_;  // ω_ij |ξ| = δ|ξ|/|Gξ| per bond; empty if isotropic (= δ)
   std::vector<std::uint8_t> broken_;    // per directed bond
   std::vector<std::uint8_t> exceeded_;  // per directed bond, this step
-  std::vector<int> intact_;             // n_i
-  std::vector<double> damage_;          // φ_i
-  std::vector<int> changed_;            // rows that lost bonds in the last run
+  // Per directed bond, below ℓ_c² with ℓ_c = |ξ| + s_c(1 + αφ_i)ω|ξ| the deformed length past
+  // which the criterion holds: a bond with |y_j − y_i|² at or under it cannot break, so find()
+  // tests a row exactly only where some bond passes it. +∞ for broken bonds and rows that never
+  // break; empty with plasticity.
+  std::vector<float> prefilter_;
+  std::vector<int> intact_;     // n_i
+  std::vector<double> damage_;  // φ_i
+  std::vector<int> changed_;    // rows that lost bonds in the last run
   std::size_t broken_pairs_ = 0;
 };
 

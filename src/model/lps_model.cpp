@@ -63,6 +63,7 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
 void LpsModel::set_up_plasticity(const PlasticPoints& plasticity) {
   const int n = particles_.count();
   plastic_extension_.assign(families_.directed_bonds(), 0.0);
+  reverse_plastic_extension_.assign(families_.directed_bonds(), 0.0);
   plastic_dilatation_.assign(n, 0.0);
   yield_force_.resize(n);
   max_plastic_stretch_ = plasticity.max_plastic_stretch;
@@ -78,6 +79,8 @@ void LpsModel::set_up_plasticity(const PlasticPoints& plasticity) {
 // S_i = B_i (θ_i − θ^p_i)/3, with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3 (notes §6).
 template <bool Plastic>
 void LpsModel::compute_dilatation(const double* y) {
+  if constexpr (Plastic)
+    if (plastic_terms_current(y)) return;
   const int n = particles_.count();
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
@@ -110,6 +113,18 @@ void LpsModel::compute_dilatation(const double* y) {
     terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
     terms_[i].shift = B * elastic_theta / 3.0;
   }
+  if constexpr (Plastic) remember_plastic_terms(y);
+}
+
+bool LpsModel::plastic_terms_current(const double* y) const {
+  return plastic_terms_revision_ == revision() + 1 &&
+         std::equal(plastic_terms_y_.begin(), plastic_terms_y_.end(), y);
+}
+
+// Stored as revision + 1, so that the zero it starts at matches no revision.
+void LpsModel::remember_plastic_terms(const double* y) {
+  plastic_terms_y_.assign(y, y + 3 * particles_.count());
+  plastic_terms_revision_ = revision() + 1;
 }
 
 // F_i = −∂Π/∂y_i = V_i Σ_j (t_ij + t_ji) n_ij V_j (Eqs 2–3), with the bond force density
@@ -121,13 +136,13 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
   const int n = particles_.count();
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
-  const int* reverse = families_.reverse.data();
   const double* xi = families_.reference_length.data();
   const float* omega = bond_omega_.data();
   const float* c = bond_weight_.data();
   const float* c_reverse = bond_reverse_weight_.data();
   const NeighbourTerms* terms = terms_.data();
   const double* ep = plastic_extension_.data();
+  const double* ep_reverse = reverse_plastic_extension_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
@@ -145,7 +160,7 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
       const double extension = length - xi[b];
       const NeighbourTerms& tj = terms[j];
       double deviatoric = extension * (Bi + tj.deviatoric) - xi[b] * (Si + tj.shift);
-      if constexpr (Plastic) deviatoric -= Bi * ep[b] + tj.deviatoric * ep[reverse[b]];
+      if constexpr (Plastic) deviatoric -= Bi * ep[b] + tj.deviatoric * ep_reverse[b];
       const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;
       // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
       const double s = length > 0 ? t * tj.volume / length : 0.0;
@@ -253,32 +268,66 @@ void LpsModel::energy_density(const double* y, double* w) {
 // force A_dev = 4ωb ê = 2ωB_i ê (Eq 12) is projected onto the yield surface |A_dev| = A^c
 // (Eq 14) by Δe^p = (A_dev − A^c sign A_dev)/(4ωb), the consistent step (the paper's 1/(2b)
 // over-relaxes by 2ω), and e^p is capped at γ = max_plastic_stretch |ξ| (Eq 16).
+// One pass over the bonds, row by row: θ_i as compute_dilatation sums it, the row's return map
+// on the extensions kept from that sum, then the row's θ^p_i and force terms at y with the new
+// e^p, so the next evaluation at y (the next step's first) starts from them.
 std::size_t LpsModel::update_plasticity(const double* y) {
-  compute_dilatation<true>(y);
   const int n = particles_.count();
-  const auto& off = families_.offsets;
+  const int* off = families_.offsets.data();
+  const int* nbr = families_.neighbors.data();
+  const double* xi = families_.reference_length.data();
+  const float* omega = bond_omega_.data();
+  const float* c = bond_weight_.data();
+  const double* V = particles_.volume.data();
+  double* ep = plastic_extension_.data();
+  double* ep_reverse = reverse_plastic_extension_.data();
+  const int* reverse = families_.reverse.data();
   std::size_t yielded = 0;
-#pragma omp parallel for reduction(+ : yielded) schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double B = terms_[i].deviatoric;
-    double plastic_theta = 0;
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double stiffness = 2.0 * bond_omega_[b] * B;  // 4ωb
-      const double trial = stiffness * deviatoric_extension(y, i, b);
-      const double critical = yield_force_[i];
-      if (stiffness > 0 && std::abs(trial) > critical) {
-        const double updated =
-            plastic_extension_[b] + (trial - std::copysign(critical, trial)) / stiffness;
-        const double cap = max_plastic_stretch_[i] * families_.reference_length[b];
-        plastic_extension_[b] = std::clamp(updated, -cap, cap);
-        ++yielded;
+#pragma omp parallel reduction(+ : yielded)
+  {
+    std::vector<double> row_extension;  // e_ij of the row, reused by every row of this thread
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      const int first = off[i], count = off[i + 1] - first;
+      if (static_cast<int>(row_extension.size()) < count) row_extension.resize(count);
+      const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+      double theta = 0;  // θ_i = Σ_j c_ij e_ij V_j (Eq 6)
+      for (int k = 0; k < count; ++k) {
+        const int b = first + k, j = nbr[b];
+        const double* yj = y + 3 * j;
+        const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+        row_extension[k] = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b];
+        theta += c[b] * (row_extension[k] * V[j]);
       }
-      plastic_theta +=
-          bond_weight_[b] * plastic_extension_[b] * particles_.volume[families_.neighbors[b]];
+      const double B = terms_[i].deviatoric, critical = yield_force_[i];
+      const double trial_theta = theta - plastic_dilatation_[i];
+      double plastic_theta = 0, moment = 0;
+      for (int k = 0; k < count; ++k) {
+        const int b = first + k, j = nbr[b];
+        const double stiffness = 2.0 * omega[b] * B;  // 4ωb
+        // ê_ij = e − e^p − (θ_i − θ^p_i)|ξ|/3
+        const double trial = stiffness * (row_extension[k] - ep[b] - trial_theta * xi[b] / 3.0);
+        if (stiffness > 0 && std::abs(trial) > critical) {
+          const double updated = ep[b] + (trial - std::copysign(critical, trial)) / stiffness;
+          const double cap = max_plastic_stretch_[i] * xi[b];
+          ep[b] = std::clamp(updated, -cap, cap);
+          ep_reverse[reverse[b]] = ep[b];  // the only write to that entry
+          ++yielded;
+        }
+        plastic_theta += c[b] * ep[b] * V[j];  // θ^p_i = Σ_j c_ij e^p_ij V_j
+        moment += omega[b] * xi[b] * (row_extension[k] * V[j] - ep[b] * V[j]);
+      }
+      plastic_dilatation_[i] = plastic_theta;
+      // compute_dilatation<true>'s terms at y with the new e^p
+      const double elastic_theta = theta - plastic_theta;
+      const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
+      dilatation_[i] = theta;
+      terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
+      terms_[i].shift = B * elastic_theta / 3.0;
     }
-    plastic_dilatation_[i] = plastic_theta;  // θ^p_i = Σ_j c_ij e^p_ij V_j
   }
   if (yielded > 0) mark_changed();
+  remember_plastic_terms(y);
   return yielded;
 }
 
@@ -301,6 +350,8 @@ void LpsModel::restore_state(const NamedArrays& state) {
   take("model.weighted_volume", weighted_volume_);
   if (plastic_) {
     take("model.plastic_extension", plastic_extension_);
+    for (std::size_t b = 0; b < plastic_extension_.size(); ++b)
+      reverse_plastic_extension_[families_.reverse[b]] = plastic_extension_[b];
     take("model.plastic_dilatation", plastic_dilatation_);
   }
   mark_changed();

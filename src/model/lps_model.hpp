@@ -42,6 +42,10 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
  private:
   template <bool Plastic>
   void compute_dilatation(const double* y);
+  // With plasticity: whether dilatation_ and terms_ hold compute_dilatation<true>(y) at this
+  // revision (the return map leaves them so for the positions it ran at), and remembering that.
+  bool plastic_terms_current(const double* y) const;
+  void remember_plastic_terms(const double* y);
   // With Energy, also V_i W_i into energy[i] (as energy_density); without, energy is not read and
   // the force kernel is the plain one.
   template <bool Plastic, bool Energy>
@@ -71,11 +75,16 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   std::vector<NeighbourTerms> terms_;
   // Plasticity, allocated only when the scene asks for it (the elastic kernel never reads them).
   bool plastic_ = false;
-  std::vector<double> plastic_extension_;    // e^p_ij per bond (Eq 11)
-  std::vector<double> plastic_dilatation_;   // θ^p_i = Σ_j c_ij e^p_ij V_j
-  std::vector<double> yield_force_;          // A^c_i = √(2Ψ0) (Eq 14)
-  std::vector<double> max_plastic_stretch_;  // γ / |ξ| (Eq 16, Table 1)
-  std::vector<double> energy_;               // V_i W_i, scratch of forces_and_energy
+  std::vector<double> plastic_extension_;          // e^p_ij per bond (Eq 11)
+  std::vector<double> reverse_plastic_extension_;  // e^p_ji in row i's order, for the force pass
+  std::vector<double> plastic_dilatation_;         // θ^p_i = Σ_j c_ij e^p_ij V_j
+  std::vector<double> yield_force_;                // A^c_i = √(2Ψ0) (Eq 14)
+  std::vector<double> max_plastic_stretch_;        // γ / |ξ| (Eq 16, Table 1)
+  std::vector<double> energy_;                     // V_i W_i, scratch of forces_and_energy
+  // The positions and model revision dilatation_ and terms_ were last computed at, with
+  // plasticity: the return map computes them for the state the next evaluation starts from.
+  std::vector<double> plastic_terms_y_;
+  std::size_t plastic_terms_revision_ = 0;
   // Matrix-free tangent (lps_tangent_product.cpp), recorded by linearize(): per directed bond the
   // unit direction n and the geometric stiffness g = p/ℓ (p⁺/ℓ with clamp_compression).
   std::vector<double> tangent_nx_, tangent_ny_, tangent_nz_, tangent_geometric_;

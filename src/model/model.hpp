@@ -53,7 +53,8 @@ class Model {
   const Families& families() const { return families_; }
   // Internal forces F_i = V_i Σ_j (T<j,i> − T<i,j>) V_j (Eq 2 times V_i), 3N, overwritten.
   // Evaluations (forces, energy_density, dilatation, forces_and_energy) keep nothing another
-  // call reads: what they share is scratch filled anew by each.
+  // call reads: what they share is scratch filled anew by each, or kept for the same positions
+  // and revision() only, so that a result never depends on the calls before it.
   virtual void forces(const double* y, double* f) = 0;
   // Strain energy density W_i of each particle at positions y (N values).
   virtual void energy_density(const double* y, double* w) = 0;

@@ -1,6 +1,7 @@
 // Bond breaking (paper §5.1, Eqs 18–19) and initial cracks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -81,6 +82,43 @@ TEST(BondBreaking, HomogeneousStretchBreaksExactlyTheBondsPastTheCriterion) {
       EXPECT_LE(phi, 1.0);
     }
   }
+}
+
+// find() tests a row exactly only where some bond passes a single-precision lower bound of the
+// critical length ℓ_c = |ξ| + s_c δ: bonds within round-off of ℓ_c must still get the exact
+// decision. One particle at a time is moved along a bond to ℓ_c (1 ± 1e-9) of its partner (its
+// other bonds stay below s_c δ: none is parallel at twice the length inside δ = 1.45 λ), so that
+// pair alone breaks, and only from above. A bound rounded up, or without its margin, misses the
+// bonds 1e-9 past ℓ_c.
+TEST(BondBreaking, BondsWithinRoundOffOfTheCriterionGetTheExactDecision) {
+  const double sc = 0.01, delta = 1.45 * 0.02;
+  const Scene scene = bar_scene(sc);
+  const auto& families = scene.families;
+  // BondBreaking decides from the positions and its own damage only: one model serves every case
+  // (the bonds it breaks there change nothing that is checked).
+  auto model = make_model(scene);
+  int cases = 0;
+  for (std::size_t b = 0; b < families.directed_bonds(); b += families.directed_bonds() / 40) {
+    const int j = families.neighbors[b];
+    const int i = static_cast<int>(std::upper_bound(families.offsets.begin(),
+                                                    families.offsets.end(), static_cast<int>(b)) -
+                                   families.offsets.begin()) -
+                  1;
+    const double xi = families.reference_length[b];
+    for (const double side : {1.0, -1.0}) {
+      BondBreaking breaking(scene, *model);
+      std::vector<double> y = scene.particles.reference;
+      const double length = (xi + sc * delta) * (1.0 + side * 1e-9);
+      for (int k = 0; k < 3; ++k)
+        y[3 * j + k] = y[3 * i + k] + (scene.particles.reference[3 * j + k] -
+                                       scene.particles.reference[3 * i + k]) *
+                                          length / xi;
+      EXPECT_EQ(breaking.run(y.data()), side > 0 ? 1u : 0u)
+          << "bond " << b << " (" << i << ", " << j << ") at " << side << "e-9 of the criterion";
+      ++cases;
+    }
+  }
+  EXPECT_GE(cases, 80);
 }
 
 // Fracture only in tension (docs/model.md, "Fracture"): under a homogeneous compression of

@@ -140,5 +140,31 @@ TEST(Plasticity, MaxPlasticStretchCapsThePlasticExtension) {
   EXPECT_TRUE(capped);
 }
 
+// The return map leaves the force terms of the positions it ran at for the next evaluation there,
+// and keeps e^p_ji in row i's order for the force pass. Both must equal what a model given the
+// same plastic state computes afresh (restore_state: no kept terms, the reverse copy rebuilt),
+// bit for bit, at those positions and elsewhere. Terms of the old e^p, a kept evaluation reused
+// at other positions, or a reverse copy not updated by the return map all fail this.
+TEST(Plasticity, ReturnMapLeavesTheForcesOfAFreshEvaluation) {
+  const Scene scene = plastic_block();
+  auto model = make_model(scene);
+  std::vector<double> f(scene.particles.reference.size()), fresh_f(f.size());
+  for (const double gamma : {0.02, 0.05, -0.02, 0.04}) {
+    const auto y = sheared(scene.particles, gamma);
+    model->forces(y.data(), f.data());
+    ASSERT_GT(model->plastic_flow()->update_plasticity(y.data()), 0u) << gamma;
+    auto fresh = make_model(scene);
+    fresh->restore_state(model->saved_state());
+    for (const double other : {0.0, 1e-3}) {
+      const auto at = other == 0 ? y : sheared(scene.particles, gamma + other);
+      model->forces(at.data(), f.data());
+      fresh->forces(at.data(), fresh_f.data());
+      for (std::size_t k = 0; k < f.size(); ++k)
+        ASSERT_EQ(f[k], fresh_f[k]) << "shear " << gamma << " + " << other << ", entry " << k;
+      EXPECT_EQ(model->elastic_energy(at.data()), fresh->elastic_energy(at.data()));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fissure
