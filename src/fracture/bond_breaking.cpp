@@ -60,6 +60,8 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
   broken_pairs_ = removed / 2;
   if (!model_.plastic_flow()) {
     prefilter_.resize(families_.directed_bonds());
+    slack_.assign(n, 0.0);
+    drift_.assign(n, 0.0);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) update_prefilter(i);
   }
@@ -131,28 +133,91 @@ std::size_t BondBreaking::find_exact(const double* y, int i) {
   return exceeded;
 }
 
-// Every row with plasticity; without, only the rows where some bond passes the prefilter (the
-// others cannot break: their exceeded_ stay 0, as apply() leaves them).
-std::size_t BondBreaking::find(const double* y) {
+// d_k = |Δy_k − c| for every particle, with Δy_k = y_k − y_k(last full check) and c the mean
+// of Δy (any common c bounds a bond's change, |Δ(y_j − y_i)| ≤ d_i + d_j, and the mean removes
+// a common translation); returns D = max d_k (NaN where y is not finite).
+double BondBreaking::update_drift(const double* y) {
   const int n = static_cast<int>(intact_.size());
+  const double* snapshot = snapshot_.data();
+  double c0 = 0, c1 = 0, c2 = 0;
+#pragma omp parallel for reduction(+ : c0, c1, c2) schedule(static)
+  for (int k = 0; k < n; ++k) {
+    c0 += y[3 * k] - snapshot[3 * k];
+    c1 += y[3 * k + 1] - snapshot[3 * k + 1];
+    c2 += y[3 * k + 2] - snapshot[3 * k + 2];
+  }
+  c0 /= n;
+  c1 /= n;
+  c2 /= n;
+  double largest = 0;
+  bool finite = true;
+#pragma omp parallel for reduction(max : largest) reduction(&& : finite) schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const double d0 = y[3 * k] - snapshot[3 * k] - c0, d1 = y[3 * k + 1] - snapshot[3 * k + 1] - c1,
+                 d2 = y[3 * k + 2] - snapshot[3 * k + 2] - c2;
+    drift_[k] = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    finite = finite && std::isfinite(drift_[k]);
+    largest = std::max(largest, drift_[k]);
+  }
+  return finite ? largest : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Row i against the prefilter; returns whether some bond passes it, and sets slack_[i] to how
+// far every bond's length may still grow before it reaches its bound, less what the row's
+// particles may already have moved since the last full check (d_i + D: see find()).
+bool BondBreaking::prefilter_row(const double* y, int i, double drift_bound) {
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const float* prefilter = prefilter_.data();
-  const bool filtered = !prefilter_.empty();
+  const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+  bool candidate = false;
+  double room = std::numeric_limits<double>::infinity();
+  for (int b = off[i]; b < off[i + 1]; ++b) {
+    const double* yj = y + 3 * nbr[b];
+    const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+    const double squared = d0 * d0 + d1 * d1 + d2 * d2;
+    candidate |= squared > prefilter[b];
+    room = std::min(room, prefilter[b] >= 0 ? std::sqrt(double(prefilter[b])) - std::sqrt(squared)
+                                            : -std::numeric_limits<double>::infinity());
+  }
+  slack_[i] = room - drift_bound;
+  return candidate;
+}
+
+// Every row with plasticity. Without, a row is tested exactly only where some bond passes the
+// prefilter, and the prefilter runs only on rows that may have come near it: between full checks
+// a bond's length changes by at most d_i + d_j ≤ d_i + D (update_drift), so a row whose slack
+// at its last check, less d_i + D then, exceeds d_i + D now cannot break. The others cannot
+// break either: their exceeded_ stay 0, as apply() leaves them. A full check, with new
+// snapshot, when more than a quarter of the rows would need the prefilter.
+std::size_t BondBreaking::find(const double* y) {
+  const int n = static_cast<int>(intact_.size());
   std::size_t exceeded = 0;
+  if (prefilter_.empty()) {
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
+    for (int i = 0; i < n; ++i) exceeded += find_exact(y, i);
+    changed_.clear();
+    return exceeded;
+  }
+  double largest = 0;
+  if (!full_check_due_) {
+    largest = update_drift(y);
+    int near = 0;
+#pragma omp parallel for reduction(+ : near) schedule(static)
+    for (int i = 0; i < n; ++i) near += !(slack_[i] > drift_[i] + largest);
+    full_check_due_ = !(near <= n / 4);
+  }
+  const bool full = full_check_due_;
+  if (full) {
+    snapshot_.assign(y, y + 3 * static_cast<std::size_t>(n));
+    std::fill(drift_.begin(), drift_.end(), 0.0);
+    largest = 0;
+    full_check_due_ = false;
+  }
+#pragma omp parallel for reduction(+ : exceeded) schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) {
-    if (filtered) {
-      const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-      bool candidate = false;
-      for (int b = off[i]; b < off[i + 1]; ++b) {
-        const double* yj = y + 3 * nbr[b];
-        const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-        candidate |= d0 * d0 + d1 * d1 + d2 * d2 > prefilter[b];
-      }
-      if (!candidate) continue;
-    }
-    exceeded += find_exact(y, i);
+    if (!full && slack_[i] > drift_[i] + largest) continue;
+    if (prefilter_row(y, i, drift_[i] + largest)) exceeded += find_exact(y, i);
   }
   changed_.clear();
   return exceeded;
@@ -198,6 +263,7 @@ void BondBreaking::restore(const std::vector<std::uint8_t>& broken) {
     update_damage(i);
     if (!prefilter_.empty()) update_prefilter(i);
   }
+  full_check_due_ = true;
   changed_.clear();
   broken_pairs_ = total / 2;
 }

@@ -40,6 +40,8 @@ class BondBreaking {
   // Row i's lower bounds of the squared deformed length at which a bond can break, after its
   // damage changed (elastic scenes only: with plasticity e^p moves every step).
   void update_prefilter(int i);
+  double update_drift(const double* y);
+  bool prefilter_row(const double* y, int i, double drift_bound);
   std::size_t find_exact(const double* y, int i);
 
   const Families& families_;
@@ -55,6 +57,10 @@ class BondBreaking {
   // tests a row exactly only where some bond passes it. +∞ for broken bonds and rows that never
   // break; empty with plasticity.
   std::vector<float> prefilter_;
+  // Where rows stand against the prefilter (elastic scenes): the positions of the last full
+  // check, each row's slack left at its last check, each particle's drift since (find()).
+  std::vector<double> snapshot_, slack_, drift_;
+  bool full_check_due_ = true;
   std::vector<int> intact_;     // n_i
   std::vector<double> damage_;  // φ_i
   std::vector<int> changed_;    // rows that lost bonds in the last run

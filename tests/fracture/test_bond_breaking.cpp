@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "fracture/bond_breaking.hpp"
@@ -119,6 +121,97 @@ TEST(BondBreaking, BondsWithinRoundOffOfTheCriterionGetTheExactDecision) {
     }
   }
   EXPECT_GE(cases, 80);
+}
+
+// Bonds broken so far against those a brute-force pass over every bond expects, after
+// `breaking` ran at y: a bond breaks for good once its extension passed `threshold` = s_c δ
+// (α = 0).
+void expect_exact_breaks(const Scene& scene, const BondBreaking& breaking,
+                         const std::vector<double>& y, double threshold,
+                         std::vector<std::uint8_t>& expected, int step) {
+  const auto& families = scene.families;
+  for (int i = 0; i < scene.particles.count(); ++i)
+    for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
+      if (extension(scene, y, i, b) > threshold) {
+        expected[b] = 1;
+        expected[families.reverse[b]] = 1;
+      }
+  for (std::size_t b = 0; b < expected.size(); ++b)
+    ASSERT_EQ(breaking.broken()[b] != 0, expected[b] != 0) << "bond " << b << ", step " << step;
+}
+
+// find() skips the rows whose bonds cannot have reached the criterion since it last looked,
+// from how far the particles moved (less their mean motion). A bar stretched a little more at
+// every step while it flies off and jitters must break, at every step, exactly the bonds whose
+// extension passes s_c δ.
+TEST(BondBreaking, GradualStretchBreaksEachBondAtTheStepItPassesTheCriterion) {
+  const double sc = 0.01, delta = 1.45 * 0.02;
+  const Scene scene = bar_scene(sc);
+  auto model = make_model(scene);
+  BondBreaking breaking(scene, *model);
+  const auto& families = scene.families;
+  const int n = scene.particles.count();
+  std::vector<std::uint8_t> expected(families.directed_bonds(), 0);
+  std::size_t broken_total = 0;
+  int steps_with_breaks = 0;
+  for (int step = 1; step <= 200; ++step) {
+    const double eps = 1.4 * sc * step / 200.0;
+    const double F[9] = {1 + eps, 0, 0, 0, 1, 0, 0, 0, 1};
+    auto y = test::deform(scene.particles, F);
+    for (int k = 0; k < n; ++k) {
+      y[3 * k] += 0.5 * step * sc * delta;  // a common motion of 0.5 s_c δ per step
+      y[3 * k + 2] += 0.05 * sc * delta * std::sin(0.7 * k + 1.3 * step);
+    }
+    const std::size_t broke = breaking.run(y.data());
+    expect_exact_breaks(scene, breaking, y, sc * delta, expected, step);
+    broken_total += broke;
+    steps_with_breaks += broke > 0;
+  }
+  std::printf("bonds broken: %zu over %d steps with breaks\n", broken_total, steps_with_breaks);
+  EXPECT_GT(steps_with_breaks, 10);
+}
+
+// Where the bound on a row's motion is tight: a pair of particles alone in its family (one
+// bond, at L), beside a line of 40 at rest. The pair is pushed together by 2 × 0.55 s_c δ, so
+// its rows are looked at with the bond short, then pulled apart in steps of 2.7% of s_c δ until
+// the bond passes s_c δ. It must break at the first step it does. A row slack that forgets how
+// far the pair had moved when it was looked at breaks it only after 2 s_c δ (the test fails);
+// so does a bound on a bond's change without the partner's motion (d_i alone).
+TEST(BondBreaking, PairPushedTogetherThenPulledApartBreaksOnTime) {
+  const double L = 0.01, sc = 0.01, delta = 1.45 * L;
+  std::string points = fmt::format("0 0 0 1e-6 0 0 0\n{} 0 0 1e-6 0 0 0\n", L);
+  for (int k = 0; k < 40; ++k) points += fmt::format("{} 1 0 1e-6 0 0 0\n", k * L);
+  const auto file = std::filesystem::temp_directory_path() / "fissure_test_pulled_pair.txt";
+  std::ofstream(file) << points;
+  const Scene scene = build_scene(parse_config(
+      fmt::format("time: {{end: 1.0}}\nbodies:\n  - geometry: {{points: {{file: {}}}}}\n"
+                  "    resolution: {}\n    material: {{density: 1000, bulk_modulus: 1.0e4, "
+                  "shear_modulus: 1.0e4, fracture: {{critical_stretch: {}}}}}\n",
+                  file.string(), L, sc),
+      "pair.yaml"));
+  std::filesystem::remove(file);
+  const int n = scene.particles.count();
+  ASSERT_EQ(n, 42);
+  int i = -1, j = -1;  // the pair, wherever set-up placed it
+  for (int k = 0; k < n; ++k)
+    if (scene.particles.reference[3 * k + 1] == 0) (i < 0 ? i : j) = k;
+  if (scene.particles.reference[3 * i] > scene.particles.reference[3 * j]) std::swap(i, j);
+  ASSERT_EQ(scene.families.offsets[i + 1] - scene.families.offsets[i], 1);
+  auto model = make_model(scene);
+  BondBreaking breaking(scene, *model);
+  std::vector<std::uint8_t> expected(scene.families.directed_bonds(), 0);
+  int broke_at = -1;
+  for (int step = 0; step <= 80; ++step) {
+    // Each moves by u s_c δ toward the other: up to 0.55 in 25 steps, then back and apart.
+    const double u = step <= 25 ? 0.022 * step : 0.55 - 0.027 * (step - 25);
+    std::vector<double> y = scene.particles.reference;
+    y[3 * i] += u * sc * delta;
+    y[3 * j] -= u * sc * delta;
+    if (breaking.run(y.data()) > 0 && broke_at < 0) broke_at = step;
+    expect_exact_breaks(scene, breaking, y, sc * delta, expected, step);
+  }
+  std::printf("the pair broke at step %d\n", broke_at);
+  EXPECT_GT(broke_at, 25);
 }
 
 // Fracture only in tension (docs/model.md, "Fracture"): under a homogeneous compression of
