@@ -64,6 +64,7 @@ void LpsModel::set_up_plasticity(const PlasticPoints& plasticity) {
   const int n = particles_.count();
   plastic_extension_.assign(families_.directed_bonds(), 0.0);
   reverse_plastic_extension_.assign(families_.directed_bonds(), 0.0);
+  plastic_row_.assign(n, 0);
   plastic_dilatation_.assign(n, 0.0);
   yield_force_.resize(n);
   max_plastic_stretch_ = plasticity.max_plastic_stretch;
@@ -147,6 +148,7 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
   for (int i = 0; i < n; ++i) {
     const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
     const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
+    [[maybe_unused]] const bool flowed = Plastic && plastic_row_[i];
     double f0 = 0, f1 = 0, f2 = 0;
     // θ_i − θ^p_i, and Σ_j ω ê² V_j
     [[maybe_unused]] double elastic_theta = 0, squares = 0;
@@ -160,7 +162,8 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
       const double extension = length - xi[b];
       const NeighbourTerms& tj = terms[j];
       double deviatoric = extension * (Bi + tj.deviatoric) - xi[b] * (Si + tj.shift);
-      if constexpr (Plastic) deviatoric -= Bi * ep[b] + tj.deviatoric * ep_reverse[b];
+      if constexpr (Plastic)
+        if (flowed) deviatoric -= Bi * ep[b] + tj.deviatoric * ep_reverse[b];
       const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;
       // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
       const double s = length > 0 ? t * tj.volume / length : 0.0;
@@ -169,8 +172,8 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
       f2 += s * d2;
       if constexpr (Energy) {
         // ê_ij as deviatoric_extension, summed as energy_density
-        const double e_hat = Plastic ? extension - ep[b] - elastic_theta * xi[b] / 3.0
-                                     : extension - elastic_theta * xi[b] / 3.0;
+        const double e_hat = Plastic && flowed ? extension - ep[b] - elastic_theta * xi[b] / 3.0
+                                               : extension - elastic_theta * xi[b] / 3.0;
         squares += omega[b] * tj.volume * e_hat * e_hat;
       }
     }
@@ -312,6 +315,11 @@ std::size_t LpsModel::update_plasticity(const double* y) {
           const double cap = max_plastic_stretch_[i] * xi[b];
           ep[b] = std::clamp(updated, -cap, cap);
           ep_reverse[reverse[b]] = ep[b];  // the only write to that entry
+          // Flags only go from 0 to 1 during the pass, and row j's may be set by row j too.
+#pragma omp atomic write
+          plastic_row_[i] = 1;
+#pragma omp atomic write
+          plastic_row_[j] = 1;
           ++yielded;
         }
         plastic_theta += c[b] * ep[b] * V[j];  // θ^p_i = Σ_j c_ij e^p_ij V_j
@@ -352,6 +360,12 @@ void LpsModel::restore_state(const NamedArrays& state) {
     take("model.plastic_extension", plastic_extension_);
     for (std::size_t b = 0; b < plastic_extension_.size(); ++b)
       reverse_plastic_extension_[families_.reverse[b]] = plastic_extension_[b];
+    auto flowed = [](double ep) { return ep != 0 || std::signbit(ep); };
+    for (int i = 0; i < particles_.count(); ++i) {
+      plastic_row_[i] = 0;
+      for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+        plastic_row_[i] |= flowed(plastic_extension_[b]) || flowed(reverse_plastic_extension_[b]);
+    }
     take("model.plastic_dilatation", plastic_dilatation_);
   }
   mark_changed();

@@ -5,6 +5,8 @@
 // (dilatation_calibration.hpp). Energy (per particle i, ê = e − e^p − (θ_i − θ^p_i)|ξ|/3):
 //   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j,
 // with the plastic extensions e^p (§4.2) held fixed between steps.
+#include <cstdint>
+
 #include "model/model_registry.hpp"
 #include "model/plastic_flow.hpp"
 #include "model/stiffness.hpp"
@@ -77,10 +79,13 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   bool plastic_ = false;
   std::vector<double> plastic_extension_;          // e^p_ij per bond (Eq 11)
   std::vector<double> reverse_plastic_extension_;  // e^p_ji in row i's order, for the force pass
-  std::vector<double> plastic_dilatation_;         // θ^p_i = Σ_j c_ij e^p_ij V_j
-  std::vector<double> yield_force_;                // A^c_i = √(2Ψ0) (Eq 14)
-  std::vector<double> max_plastic_stretch_;        // γ / |ξ| (Eq 16, Table 1)
-  std::vector<double> energy_;                     // V_i W_i, scratch of forces_and_energy
+  // 1 where a bond of row i, in either direction, has flowed (e^p_ij or e^p_ji not +0): the force
+  // pass reads e^p only there, elsewhere both are +0 and the elastic terms are the same bits.
+  std::vector<std::uint8_t> plastic_row_;
+  std::vector<double> plastic_dilatation_;   // θ^p_i = Σ_j c_ij e^p_ij V_j
+  std::vector<double> yield_force_;          // A^c_i = √(2Ψ0) (Eq 14)
+  std::vector<double> max_plastic_stretch_;  // γ / |ξ| (Eq 16, Table 1)
+  std::vector<double> energy_;               // V_i W_i, scratch of forces_and_energy
   // The positions and model revision dilatation_ and terms_ were last computed at, with
   // plasticity: the return map computes them for the state the next evaluation starts from.
   std::vector<double> plastic_terms_y_;
