@@ -1,7 +1,10 @@
 #include "contact/self_contact.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "contact/contact_particles.hpp"
 
@@ -12,7 +15,13 @@ SelfContact::SelfContact(const Scene& scene, const Model& model)
   auto particles = contact_particles(scene);
   radius_ = std::move(particles.radius);
   stiffness_ = std::move(particles.stiffness);
-  for (double r : radius_) cell_ = std::max(cell_, 2 * r);
+  for (double r : radius_) reach_ = std::max(reach_, 2 * r);
+  // Skin 0.3 of the largest reach, a trade between the two costs. Each evaluation goes through
+  // the pairs within about 1.3 reach, some 1.3³ ≈ 2.2 times those within reach; a rebuild
+  // (about one elastic force evaluation) is due once particles moved skin/2 = 0.15 of the
+  // largest reach (about 0.1 λ on tet-sampled bodies, r = ½V^(1/3)) relative to each other. A
+  // larger skin lengthens every evaluation and every rebuild; a smaller one rebuilds more often.
+  skin_ = 0.3 * reach_;
 }
 
 void SelfContact::build_grid(const double* y) {
@@ -23,10 +32,10 @@ void SelfContact::build_grid(const double* y) {
       lo[k] = std::min(lo[k], y[3 * i + k]);
       hi[k] = std::max(hi[k], y[3 * i + k]);
     }
-  // Cells at least the largest contact reach; coarser when the particles are spread so far
-  // apart that a fine grid would cost more memory than the particles themselves.
+  // Cells at least the largest list cutoff; coarser when the particles are spread so far apart
+  // that a fine grid would cost more memory than the particles themselves.
   const double budget = 8.0 * n + 27;
-  size_ = cell_;
+  size_ = reach_ + skin_;
   auto count = [&] {
     double total = 1;
     for (int k = 0; k < 3; ++k) total *= std::floor((hi[k] - lo[k]) / size_) + 1;
@@ -41,55 +50,161 @@ void SelfContact::build_grid(const double* y) {
   }
   cell_of_.resize(n);
   cell_start_.assign(cells + 1, 0);
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     int c[3];
     for (int k = 0; k < 3; ++k)
       c[k] = std::min(dims_[k] - 1, static_cast<int>((y[3 * i + k] - origin_[k]) / size_));
     cell_of_[i] = (c[2] * dims_[1] + c[1]) * dims_[0] + c[0];
-    ++cell_start_[cell_of_[i] + 1];
   }
+  for (int i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
   for (long long c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_particles_.resize(n);
   std::vector<int> next(cell_start_.begin(), cell_start_.end() - 1);
   for (int i = 0; i < n; ++i) cell_particles_[next[cell_of_[i]]++] = i;
 }
 
-void SelfContact::add_forces(const double* y, double* f) {
-  // A non-finite state has no geometry to search; the run loop stops on it after this step.
-  for (std::size_t k = 0; k < 3 * radius_.size(); ++k)
-    if (!std::isfinite(y[k])) return;
+void SelfContact::build_list(const double* y) {
   build_grid(y);
   const int n = static_cast<int>(radius_.size());
-  const auto& off = families_.offsets;
-  const auto& nbr = families_.neighbors;
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int i = 0; i < n; ++i) {
+  const double largest_radius = 0.5 * reach_;
+  // Calls visit(j) for every other particle within r_i + r_j + skin of particle i. Of the 27
+  // cells around i's, those farther from particle i than r_i + max r + skin are skipped: most of
+  // them when the grid was coarsened (cells many times the cutoff, e.g. once fragments flew
+  // apart), and the corners of the block otherwise.
+  auto for_each_candidate = [&](int i, auto&& visit) {
     const int c = cell_of_[i];
     const int ci[3] = {c % dims_[0], (c / dims_[0]) % dims_[1], c / (dims_[0] * dims_[1])};
-    double force[3] = {0, 0, 0};
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
+    // Squared distances from particle i to the planes of its cell's lower and upper faces, and
+    // the largest squared distance a candidate may have (1e-9 more, so that round-off in the
+    // face positions never skips a cell holding one).
+    double below[3], above[3];
+    for (int k = 0; k < 3; ++k) {
+      const double face = origin_[k] + ci[k] * size_;
+      below[k] = std::pow(std::max(0.0, y[3 * i + k] - face), 2);
+      above[k] = std::pow(std::max(0.0, face + size_ - y[3 * i + k]), 2);
+    }
+    const double limit = std::pow((radius_[i] + largest_radius + skin_) * (1 + 1e-9), 2);
+    auto gap = [&](int k, int step) { return step < 0 ? below[k] : step > 0 ? above[k] : 0.0; };
+    for (int dz = -1; dz <= 1; ++dz) {
+      const int z = ci[2] + dz;
+      const double gz = gap(2, dz);
+      if (z < 0 || z >= dims_[2] || gz > limit) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        const int yy = ci[1] + dy;
+        const double gzy = gz + gap(1, dy);
+        if (yy < 0 || yy >= dims_[1] || gzy > limit) continue;
         for (int dx = -1; dx <= 1; ++dx) {
-          const int x = ci[0] + dx, yy = ci[1] + dy, z = ci[2] + dz;
-          if (x < 0 || yy < 0 || z < 0 || x >= dims_[0] || yy >= dims_[1] || z >= dims_[2])
-            continue;
+          const int x = ci[0] + dx;
+          if (x < 0 || x >= dims_[0] || gzy + gap(0, dx) > limit) continue;
           const int cell = (z * dims_[1] + yy) * dims_[0] + x;
           for (int s = cell_start_[cell]; s < cell_start_[cell + 1]; ++s) {
             const int j = cell_particles_[s];
             if (j == i) continue;
             double d[3];
             for (int k = 0; k < 3; ++k) d[k] = y[3 * i + k] - y[3 * j + k];
-            const double distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            const double reach = radius_[i] + radius_[j];
-            if (distance >= reach || distance == 0) continue;
-            // Bonded pairs interact through the model only.
-            const auto row = nbr.begin() + off[i], end = nbr.begin() + off[i + 1];
-            const auto it = std::lower_bound(row, end, j);
-            if (it != end && *it == j && model_.bond_intact(it - nbr.begin())) continue;
-            const double push = 0.5 * (stiffness_[i] + stiffness_[j]) * (reach - distance);
-            for (int k = 0; k < 3; ++k) force[k] += push * d[k] / distance;
+            const double cutoff = radius_[i] + radius_[j] + skin_;
+            if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cutoff * cutoff) visit(j);
           }
         }
+      }
+    }
+  };
+  // One pass over the grid, parallel over particles: each thread finds the rows of its block
+  // of particles into a buffer of its own, then copies it to its place in the list.
+  list_start_.assign(n + 1, 0);
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  std::vector<std::vector<Candidate>> found(omp_get_max_threads());
+#pragma omp parallel
+  {
+    std::vector<Candidate>& mine = found[omp_get_thread_num()];
+    int first_row = -1;
+    // One block of rows per thread (static schedule, no chunk size): the rows of `mine` are
+    // consecutive in the list.
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      if (first_row < 0) first_row = i;
+      const std::size_t start = mine.size();
+      for_each_candidate(i, [&](int j) { mine.push_back({j, -1}); });
+      Candidate* row = mine.data() + start;
+      const int count = static_cast<int>(mine.size() - start);
+      // In increasing j, an order independent of the grid and of when the list was built; the
+      // family row is sorted by j too, so each search starts where the previous one ended.
+      std::sort(row, row + count, [](const Candidate& a, const Candidate& b) { return a.j < b.j; });
+      auto bond = nbr.begin() + off[i];
+      const auto end = nbr.begin() + off[i + 1];
+      for (int s = 0; s < count; ++s) {
+        bond = std::lower_bound(bond, end, row[s].j);
+        if (bond != end && *bond == row[s].j) row[s].bond = static_cast<int>(bond - nbr.begin());
+      }
+      list_start_[i + 1] = count;
+    }
+#pragma omp single
+    {
+      for (int i = 0; i < n; ++i) list_start_[i + 1] += list_start_[i];
+      candidates_.resize(list_start_[n]);
+    }
+    if (first_row >= 0)
+      std::copy(mine.begin(), mine.end(), candidates_.begin() + list_start_[first_row]);
+  }
+  built_at_.assign(y, y + 3 * radius_.size());
+  ++builds_;
+}
+
+void SelfContact::add_forces(const double* y, double* f) {
+  const int n = static_cast<int>(radius_.size());
+  if (n == 0) return;
+  // One pass for both: whether y is finite, and how far the particles moved since the list was
+  // built, measured so that moving all together does not count. A pair's separation changed by
+  // |Δ_i − Δ_j| = |(Δ_i − u) − (Δ_j − u)| ≤ 2 max_k |Δ_k − u| for any common vector u, so the
+  // list is exact while max_k |Δ_k − u| ≤ skin/2 for some u: u = 0 (max_k |Δ_k|), or u the
+  // centre of the box around the displacements Δ_k (at most half its diagonal from each). The
+  // second keeps the list of a body in flight (drop_shatter's falling ball moves more than
+  // skin/2 at every step).
+  const bool have_list = !built_at_.empty();
+  const double* built = built_at_.data();
+  bool finite = true;
+  double moved = 0;  // max_k |Δ_k|²
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};  // the box around the Δ_k
+#pragma omp parallel for schedule(static) reduction(&& : finite) reduction(max : moved, hi[:3]) \
+    reduction(min : lo[:3])
+  for (int i = 0; i < n; ++i) {
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      finite = finite && std::isfinite(y[3 * i + k]);
+      if (have_list) {
+        const double d = y[3 * i + k] - built[3 * i + k];
+        d2 += d * d;
+        lo[k] = std::min(lo[k], d);
+        hi[k] = std::max(hi[k], d);
+      }
+    }
+    moved = std::max(moved, d2);
+  }
+  // A non-finite state has no geometry to search; the run loop stops on it after this step.
+  if (!finite) return;
+  double half_diagonal = 0;  // squared
+  for (int k = 0; k < 3; ++k) half_diagonal += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  if (!have_list || std::min(moved, half_diagonal) > 0.25 * skin_ * skin_) build_list(y);
+
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    double force[3] = {0, 0, 0};
+    for (int s = list_start_[i]; s < list_start_[i + 1]; ++s) {
+      const int j = candidates_[s].j;
+      double d[3];
+      for (int k = 0; k < 3; ++k) d[k] = y[3 * i + k] - y[3 * j + k];
+      const double distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      const double reach = radius_[i] + radius_[j];
+      if (distance >= reach || distance == 0) continue;
+      // Bonded pairs interact through the model only.
+      const int b = candidates_[s].bond;
+      if (b >= 0 && model_.bond_intact(b)) continue;
+      const double push = 0.5 * (stiffness_[i] + stiffness_[j]) * (reach - distance);
+      for (int k = 0; k < 3; ++k) force[k] += push * d[k] / distance;
+    }
     for (int k = 0; k < 3; ++k) f[3 * i + k] += force[k];
   }
 }

@@ -1,7 +1,23 @@
 #pragma once
 // Short-range repulsion between particles that are not bonded (separate bodies, and fragments
 // once their bonds broke), so bodies and fragments collide instead of passing through each
-// other (contact.self). Pairs are found on a uniform cell grid rebuilt at every evaluation.
+// other (contact.self).
+//
+// Pairs come from a Verlet list with a skin: every pair closer than r_i + r_j + skin, bonded or
+// not, found on a uniform cell grid (cells of the largest reach + skin) and kept per particle in
+// CSR form with the index of the bond to j in i's family row (−1 if none). The list is rebuilt
+// only once the particles have moved more than skin/2 since the last build, not counting what
+// they moved together (add_forces): a pair left out was at least r_i + r_j + skin apart then
+// and so is still at least r_i + r_j apart, out of reach. Whether a bond is intact is looked up
+// at each evaluation (model.bond_intact), so a bond that breaks between builds turns its pair
+// into a contact pair at once, with no rebuild.
+//
+// The forces are those of the former search of the 27 cells at every evaluation to round-off:
+// each particle's sum now runs over its partners in increasing j instead of in cell order, which
+// changes only the order of summation. That order does not depend on when the list was built,
+// so the forces are a function of the positions and the intact bonds alone (a resumed run, which
+// builds its list afresh, adds in the same order as an uninterrupted one).
+#include <cstddef>
 #include <vector>
 
 #include "model/model.hpp"
@@ -16,18 +32,34 @@ class SelfContact {
   // f (3N), with r = ½V^(1/3) and k the mean of the two particles' contact stiffness.
   void add_forces(const double* y, double* f);
 
+  // The Verlet list's skin [m] and how many times the list has been built (for tests).
+  double skin() const { return skin_; }
+  std::size_t builds() const { return builds_; }
+
  private:
   void build_grid(const double* y);
+  void build_list(const double* y);
 
   const Families& families_;
   const Model& model_;
   std::vector<double> radius_, stiffness_;
-  double cell_ = 0;  // the largest contact reach, 2 max r
-  double size_ = 0;  // cell edge of the current grid (≥ cell_)
-  // Cell grid over the current bounding box: particles sorted by cell (CSR).
+  double reach_ = 0;  // the largest contact reach, 2 max r
+  double skin_ = 0;   // the list holds the pairs within r_i + r_j + skin
+  // Cell grid over the bounding box at the last build: particles sorted by cell (CSR).
+  double size_ = 0;  // cell edge (≥ reach_ + skin_)
   double origin_[3] = {0, 0, 0};
   int dims_[3] = {1, 1, 1};
   std::vector<int> cell_start_, cell_particles_, cell_of_;
+  // The Verlet list: particle i's candidates are candidates_[list_start_[i] .. list_start_[i+1]),
+  // in increasing j; bond is the directed bond i → j in the families, or −1.
+  struct Candidate {
+    int j;
+    int bond;
+  };
+  std::vector<int> list_start_;
+  std::vector<Candidate> candidates_;
+  std::vector<double> built_at_;  // 3N positions at the last build (empty before the first)
+  std::size_t builds_ = 0;
 };
 
 }  // namespace fissure
