@@ -304,17 +304,22 @@ std::size_t LpsModel::update_plasticity(const double* y) {
       }
       const double B = terms_[i].deviatoric, critical = yield_force_[i];
       const double trial_theta = theta - plastic_dilatation_[i];
+      // A row that never flowed has e^p = +0 on every bond: it reads none of them.
+      std::uint8_t flowed;
+#pragma omp atomic read
+      flowed = plastic_row_[i];
       double plastic_theta = 0, moment = 0;
       for (int k = 0; k < count; ++k) {
         const int b = first + k, j = nbr[b];
         const double stiffness = 2.0 * omega[b] * B;  // 4ωb
+        double plastic = flowed ? ep[b] : 0.0;
         // ê_ij = e − e^p − (θ_i − θ^p_i)|ξ|/3
-        const double trial = stiffness * (row_extension[k] - ep[b] - trial_theta * xi[b] / 3.0);
+        const double trial = stiffness * (row_extension[k] - plastic - trial_theta * xi[b] / 3.0);
         if (stiffness > 0 && std::abs(trial) > critical) {
-          const double updated = ep[b] + (trial - std::copysign(critical, trial)) / stiffness;
+          const double updated = plastic + (trial - std::copysign(critical, trial)) / stiffness;
           const double cap = max_plastic_stretch_[i] * xi[b];
-          ep[b] = std::clamp(updated, -cap, cap);
-          ep_reverse[reverse[b]] = ep[b];  // the only write to that entry
+          plastic = ep[b] = std::clamp(updated, -cap, cap);
+          ep_reverse[reverse[b]] = plastic;  // the only write to that entry
           // Flags only go from 0 to 1 during the pass, and row j's may be set by row j too.
 #pragma omp atomic write
           plastic_row_[i] = 1;
@@ -322,8 +327,8 @@ std::size_t LpsModel::update_plasticity(const double* y) {
           plastic_row_[j] = 1;
           ++yielded;
         }
-        plastic_theta += c[b] * ep[b] * V[j];  // θ^p_i = Σ_j c_ij e^p_ij V_j
-        moment += omega[b] * xi[b] * (row_extension[k] * V[j] - ep[b] * V[j]);
+        plastic_theta += c[b] * plastic * V[j];  // θ^p_i = Σ_j c_ij e^p_ij V_j
+        moment += omega[b] * xi[b] * (row_extension[k] * V[j] - plastic * V[j]);
       }
       plastic_dilatation_[i] = plastic_theta;
       // compute_dilatation<true>'s terms at y with the new e^p
