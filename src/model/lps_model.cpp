@@ -105,16 +105,21 @@ void LpsModel::compute_dilatation(const double* y) {
       else
         moment += omega[b] * xi[b] * extension;
     }
-    const double B = terms_[i].deviatoric;
-    const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;
-    // Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p) |ξ| V_j − (θ − θ^p) m/3, with m over the intact bonds
-    // (zero for an intact family without the calibration)
-    const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
-    dilatation_[i] = theta;
-    terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
-    terms_[i].shift = B * elastic_theta / 3.0;
+    set_terms(i, theta, Plastic ? theta - plastic_dilatation_[i] : theta, moment);
   }
   if constexpr (Plastic) remember_plastic_terms(y);
+}
+
+// θ_i and the per-particle force terms from θ_i, θ_i − θ^p_i and Σ_j ω (e − e^p)|ξ| V_j:
+// Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p)|ξ| V_j − (θ − θ^p) m/3, with m over the intact bonds (zero
+// for an intact family without the calibration); D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j and
+// S_i = B_i (θ_i − θ^p_i)/3 (notes §6).
+void LpsModel::set_terms(int i, double theta, double elastic_theta, double moment) {
+  const double B = terms_[i].deviatoric;
+  const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
+  dilatation_[i] = theta;
+  terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
+  terms_[i].shift = B * elastic_theta / 3.0;
 }
 
 bool LpsModel::plastic_terms_current(const double* y) const {
@@ -331,12 +336,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
         moment += omega[b] * xi[b] * (row_extension[k] * V[j] - plastic * V[j]);
       }
       plastic_dilatation_[i] = plastic_theta;
-      // compute_dilatation<true>'s terms at y with the new e^p
-      const double elastic_theta = theta - plastic_theta;
-      const double deviatoric_moment = moment - elastic_theta * weighted_volume_[i] / 3.0;
-      dilatation_[i] = theta;
-      terms_[i].pressure = materials_.bulk_modulus[i] * theta - B / 3.0 * deviatoric_moment;
-      terms_[i].shift = B * elastic_theta / 3.0;
+      set_terms(i, theta, theta - plastic_theta, moment);  // compute_dilatation<true>'s, new e^p
     }
   }
   if (yielded > 0) mark_changed();

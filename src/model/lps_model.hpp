@@ -46,6 +46,7 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void compute_dilatation(const double* y);
   // With plasticity: whether dilatation_ and terms_ hold compute_dilatation<true>(y) at this
   // revision (the return map leaves them so for the positions it ran at), and remembering that.
+  void set_terms(int i, double theta, double elastic_theta, double moment);
   bool plastic_terms_current(const double* y) const;
   void remember_plastic_terms(const double* y);
   // With Energy, also V_i W_i into energy[i] (as energy_density); without, energy is not read and
