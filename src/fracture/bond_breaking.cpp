@@ -1,6 +1,7 @@
 #include "fracture/bond_breaking.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -68,27 +69,20 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
 }
 
 // The criterion e − e^p > s_c(1 + αφ_i)ω|ξ| of find_exact is |y_j − y_i| > ℓ_c with e^p = 0;
-// the bound is ℓ_c(1 − 1e-6), squared and rounded down to single precision, so that every bond
-// the exact test (rounded in double) would break passes it.
+// the bound is ℓ_c(1 − 1e-6) rounded down to single precision (the largest float where ℓ_c is
+// past that range), so that every bond the exact test (rounded in double) would break passes it.
 void BondBreaking::update_prefilter(int i) {
   const double scale = critical_stretch_[i] * (1.0 + alpha_[i] * damage_[i]);
   const bool anisotropic = !reach_.empty();
-  constexpr float never = std::numeric_limits<float>::infinity();
   for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
     if (broken_[b] || scale == std::numeric_limits<double>::infinity()) {
-      prefilter_[b] = never;
+      prefilter_[b] = std::numeric_limits<float>::infinity();
       continue;
     }
-    const double length =
-        families_.reference_length[b] + scale * (anisotropic ? reach_[b] : horizon_[i]);
-    const double bound = length > 0 ? (1.0 - 1e-6) * length : 0.0;
-    const double squared = bound * bound;
-    // A bound past single precision's range stays finite, so an overflowing |y_j − y_i|² (or +∞)
-    // still reaches the exact test.
-    const float rounded = squared < std::numeric_limits<float>::max()
-                              ? static_cast<float>(squared)
-                              : std::numeric_limits<float>::max();
-    prefilter_[b] = length > 0 ? std::min(rounded, std::nextafter(rounded, 0.0f)) : -1.0f;
+    const double bound = (1.0 - 1e-6) * (families_.reference_length[b] +
+                                         scale * (anisotropic ? reach_[b] : horizon_[i]));
+    const float rounded = static_cast<float>(std::min<double>(bound, FLT_MAX));
+    prefilter_[b] = std::min(rounded, std::nextafter(rounded, -FLT_MAX));
   }
 }
 
@@ -170,18 +164,14 @@ bool BondBreaking::prefilter_row(const double* y, int i, double drift_bound) {
   const int* nbr = families_.neighbors.data();
   const float* prefilter = prefilter_.data();
   const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-  bool candidate = false;
   double room = std::numeric_limits<double>::infinity();
   for (int b = off[i]; b < off[i + 1]; ++b) {
     const double* yj = y + 3 * nbr[b];
     const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-    const double squared = d0 * d0 + d1 * d1 + d2 * d2;
-    candidate |= squared > prefilter[b];
-    room = std::min(room, prefilter[b] >= 0 ? std::sqrt(double(prefilter[b])) - std::sqrt(squared)
-                                            : -std::numeric_limits<double>::infinity());
+    room = std::min(room, prefilter[b] - std::sqrt(d0 * d0 + d1 * d1 + d2 * d2));
   }
   slack_[i] = room - drift_bound;
-  return candidate;
+  return room < 0;  // some bond past its bound
 }
 
 // Every row with plasticity. Without, a row is tested exactly only where some bond passes the
@@ -200,14 +190,14 @@ std::size_t BondBreaking::find(const double* y) {
     return exceeded;
   }
   double largest = 0;
-  if (!full_check_due_) {
+  bool full = full_check_due_;
+  if (!full) {
     largest = update_drift(y);
     int near = 0;
 #pragma omp parallel for reduction(+ : near) schedule(static)
     for (int i = 0; i < n; ++i) near += !(slack_[i] > drift_[i] + largest);
-    full_check_due_ = !(near <= n / 4);
+    full = !(near <= n / 4);
   }
-  const bool full = full_check_due_;
   if (full) {
     snapshot_.assign(y, y + 3 * static_cast<std::size_t>(n));
     std::fill(drift_.begin(), drift_.end(), 0.0);

@@ -37,8 +37,8 @@ class BondBreaking {
  private:
   void remove(int i, int b);
   void update_damage(int i);
-  // Row i's lower bounds of the squared deformed length at which a bond can break, after its
-  // damage changed (elastic scenes only: with plasticity e^p moves every step).
+  // Row i's lower bounds of the deformed length at which a bond can break, after its damage
+  // changed (elastic scenes only: with plasticity e^p moves every step).
   void update_prefilter(int i);
   double update_drift(const double* y);
   bool prefilter_row(const double* y, int i, double drift_bound);
@@ -52,10 +52,10 @@ class BondBreaking {
   std::vector<float> reach_;  // ω_ij |ξ| = δ|ξ|/|Gξ| per bond; empty if isotropic (= δ)
   std::vector<std::uint8_t> broken_;    // per directed bond
   std::vector<std::uint8_t> exceeded_;  // per directed bond, this step
-  // Per directed bond, below ℓ_c² with ℓ_c = |ξ| + s_c(1 + αφ_i)ω|ξ| the deformed length past
-  // which the criterion holds: a bond with |y_j − y_i|² at or under it cannot break, so find()
-  // tests a row exactly only where some bond passes it. +∞ for broken bonds and rows that never
-  // break; empty with plasticity.
+  // Per directed bond, below ℓ_c = |ξ| + s_c(1 + αφ_i)ω|ξ|, the deformed length past which the
+  // criterion holds: a bond with |y_j − y_i| at or under it cannot break, so find() tests a row
+  // exactly only where some bond passes it. +∞ for broken bonds and rows that never break;
+  // empty with plasticity.
   std::vector<float> prefilter_;
   // Where rows stand against the prefilter (elastic scenes): the positions of the last full
   // check, each row's slack left at its last check, each particle's drift since (find()).

@@ -177,8 +177,8 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
       f2 += s * d2;
       if constexpr (Energy) {
         // ê_ij as deviatoric_extension, summed as energy_density
-        const double e_hat = Plastic && flowed ? extension - ep[b] - elastic_theta * xi[b] / 3.0
-                                               : extension - elastic_theta * xi[b] / 3.0;
+        const double e_hat = flowed ? extension - ep[b] - elastic_theta * xi[b] / 3.0
+                                    : extension - elastic_theta * xi[b] / 3.0;
         squares += omega[b] * tj.volume * e_hat * e_hat;
       }
     }

@@ -44,9 +44,10 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
  private:
   template <bool Plastic>
   void compute_dilatation(const double* y);
+  // θ_i and row i's force terms from θ_i, θ_i − θ^p_i and Σ_j ω (e − e^p)|ξ| V_j.
+  void set_terms(int i, double theta, double elastic_theta, double moment);
   // With plasticity: whether dilatation_ and terms_ hold compute_dilatation<true>(y) at this
   // revision (the return map leaves them so for the positions it ran at), and remembering that.
-  void set_terms(int i, double theta, double elastic_theta, double moment);
   bool plastic_terms_current(const double* y) const;
   void remember_plastic_terms(const double* y);
   // With Energy, also V_i W_i into energy[i] (as energy_density); without, energy is not read and
