@@ -83,31 +83,24 @@ void LpsModel::compute_dilatation(const double* y) {
   if constexpr (Plastic)
     if (plastic_terms_current(y)) return;
   const int n = particles_.count();
-  const int* off = families_.offsets.data();
-  const int* nbr = families_.neighbors.data();
-  const double* xi = families_.reference_length.data();
-  const float* omega = bond_omega_.data();
-  const float* c = bond_weight_.data();
   const double* V = particles_.volume.data();
   const double* ep = plastic_extension_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    double theta = 0, moment = 0;
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int j = nbr[b];
-      const double* yj = y + 3 * j;
-      const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-      const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j];  // e_ij V_j
-      theta += c[b] * extension;
-      if constexpr (Plastic)
-        moment += omega[b] * xi[b] * (extension - ep[b] * V[j]);
-      else
-        moment += omega[b] * xi[b] * extension;
-    }
-    set_terms(i, theta, Plastic ? theta - plastic_dilatation_[i] : theta, moment);
+    // a row that never flowed has e^p = +0 on its bonds: the same bits without reading them
+    const lps::DilatationSums sums = kernels_.dilatation(
+        bond_row(i), i, y, V, Plastic && plastic_row_[i] ? ep : nullptr, nullptr);
+    set_terms(i, sums.theta, Plastic ? sums.theta - plastic_dilatation_[i] : sums.theta,
+              sums.moment);
   }
   if constexpr (Plastic) remember_plastic_terms(y);
+}
+
+lps::BondRow LpsModel::bond_row(int i) const {
+  return {families_.offsets[i],       families_.offsets[i + 1],
+          families_.neighbors.data(), families_.reference_length.data(),
+          bond_omega_.data(),         bond_weight_.data(),
+          bond_reverse_weight_.data()};
 }
 
 // θ_i and the per-particle force terms from θ_i, θ_i − θ^p_i and Σ_j ω (e − e^p)|ξ| V_j:
@@ -140,58 +133,63 @@ template <bool Plastic, bool Energy>
 void LpsModel::compute_forces(const double* y, double* f, double* energy) {
   compute_dilatation<Plastic>(y);
   const int n = particles_.count();
-  const int* off = families_.offsets.data();
-  const int* nbr = families_.neighbors.data();
-  const double* xi = families_.reference_length.data();
-  const float* omega = bond_omega_.data();
-  const float* c = bond_weight_.data();
-  const float* c_reverse = bond_reverse_weight_.data();
+  const NeighbourTerms* terms = terms_.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double theta = dilatation_[i];
+    const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;  // θ_i − θ^p_i
+    const lps::BondRow row = bond_row(i);
+    double force[3], squares = 0;  // Σ_j ω ê² V_j
+    if (Plastic && plastic_row_[i])
+      plastic_force_row(row, i, y, elastic_theta, force, Energy ? &squares : nullptr);
+    else
+      kernels_.force({&row, i, y, terms, elastic_theta}, force, Energy ? &squares : nullptr);
+    const double Vi = terms[i].volume;
+    f[3 * i] = Vi * force[0];
+    f[3 * i + 1] = Vi * force[1];
+    f[3 * i + 2] = Vi * force[2];
+    if constexpr (Energy)
+      energy[i] = Vi * (0.5 * materials_.bulk_modulus[i] * theta * theta +
+                        0.5 * terms[i].deviatoric * squares);  // V_i W_i
+  }
+}
+
+// The force pass of a row with plastic extensions on its bonds: the elastic row's terms with
+// ê = e − e^p − (θ_i − θ^p_i)|ξ|/3 and e^p_ij (B_i) and e^p_ji (B_j) taken off (Eq 12).
+void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y,
+                                 double elastic_theta, double force[3], double* squares) const {
   const NeighbourTerms* terms = terms_.data();
   const double* ep = plastic_extension_.data();
   const double* ep_reverse = reverse_plastic_extension_.data();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
-    [[maybe_unused]] const bool flowed = Plastic && plastic_row_[i];
-    double f0 = 0, f1 = 0, f2 = 0;
-    // θ_i − θ^p_i, and Σ_j ω ê² V_j
-    [[maybe_unused]] double elastic_theta = 0, squares = 0;
-    if constexpr (Energy)
-      elastic_theta = Plastic ? dilatation_[i] - plastic_dilatation_[i] : dilatation_[i];
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int j = nbr[b];
-      const double* yj = y + 3 * j;
-      const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-      const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-      const double extension = length - xi[b];
-      const NeighbourTerms& tj = terms[j];
-      double deviatoric = extension * (Bi + tj.deviatoric) - xi[b] * (Si + tj.shift);
-      if constexpr (Plastic)
-        if (flowed) deviatoric -= Bi * ep[b] + tj.deviatoric * ep_reverse[b];
-      const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;
-      // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
-      const double s = length > 0 ? t * tj.volume / length : 0.0;
-      f0 += s * d0;
-      f1 += s * d1;
-      f2 += s * d2;
-      if constexpr (Energy) {
-        // ê_ij as deviatoric_extension, summed as energy_density
-        const double e_hat = flowed ? extension - ep[b] - elastic_theta * xi[b] / 3.0
-                                    : extension - elastic_theta * xi[b] / 3.0;
-        squares += omega[b] * tj.volume * e_hat * e_hat;
-      }
-    }
-    const double Vi = terms[i].volume;
-    f[3 * i] = Vi * f0;
-    f[3 * i + 1] = Vi * f1;
-    f[3 * i + 2] = Vi * f2;
-    if constexpr (Energy) {
-      const double theta = dilatation_[i];
-      energy[i] =
-          Vi * (0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * Bi * squares);  // V_i W_i
+  const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+  const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
+  double f0 = 0, f1 = 0, f2 = 0, w = 0;
+  for (int b = row.begin; b < row.end; ++b) {
+    const int j = row.neighbor[b];
+    const double* yj = y + 3 * j;
+    const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+    const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    const double xi = row.reference_length[b];
+    const double extension = length - xi;
+    const NeighbourTerms& tj = terms[j];
+    const double deviatoric = extension * (Bi + tj.deviatoric) - xi * (Si + tj.shift) -
+                              (Bi * ep[b] + tj.deviatoric * ep_reverse[b]);
+    const double t =
+        row.weight[b] * Di + row.reverse_weight[b] * tj.pressure + row.omega[b] * deviatoric;
+    // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
+    const double s = length > 0 ? t * tj.volume / length : 0.0;
+    f0 += s * d0;
+    f1 += s * d1;
+    f2 += s * d2;
+    if (squares) {
+      const double e_hat = extension - ep[b] - elastic_theta * xi / 3.0;  // ê_ij
+      w += row.omega[b] * tj.volume * e_hat * e_hat;
     }
   }
+  force[0] = f0;
+  force[1] = f1;
+  force[2] = f2;
+  if (squares) *squares = w;
 }
 
 void LpsModel::forces(const double* y, double* f) {
@@ -217,23 +215,10 @@ double LpsModel::forces_and_energy(const double* y, double* f) {
 // θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped), summed as compute_dilatation sums it.
 void LpsModel::dilatation(const double* y, double* theta) const {
   const int n = particles_.count();
-  const int* off = families_.offsets.data();
-  const int* nbr = families_.neighbors.data();
-  const double* xi = families_.reference_length.data();
-  const float* c = bond_weight_.data();
   const double* V = particles_.volume.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-    double sum = 0;
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int j = nbr[b];
-      const double* yj = y + 3 * j;
-      const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-      sum += c[b] * ((std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * V[j]);
-    }
-    theta[i] = sum;
-  }
+  for (int i = 0; i < n; ++i)
+    theta[i] = kernels_.dilatation(bond_row(i), i, y, V, nullptr, nullptr).theta;
 }
 
 void LpsModel::update_dilatation(const double* y) {
@@ -298,22 +283,17 @@ std::size_t LpsModel::update_plasticity(const double* y) {
     for (int i = 0; i < n; ++i) {
       const int first = off[i], count = off[i + 1] - first;
       if (static_cast<int>(row_extension.size()) < count) row_extension.resize(count);
-      const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-      double theta = 0;  // θ_i = Σ_j c_ij e_ij V_j (Eq 6)
-      for (int k = 0; k < count; ++k) {
-        const int b = first + k, j = nbr[b];
-        const double* yj = y + 3 * j;
-        const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-        row_extension[k] = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b];
-        theta += c[b] * (row_extension[k] * V[j]);
-      }
+      const lps::BondRow row = bond_row(i);
+      // θ_i = Σ_j c_ij e_ij V_j (Eq 6), and e_ij into row_extension
+      const double theta = kernels_.dilatation(row, i, y, V, nullptr, row_extension.data()).theta;
       const double B = terms_[i].deviatoric, critical = yield_force_[i];
       const double trial_theta = theta - plastic_dilatation_[i];
       // A row that never flowed has e^p = +0 on every bond: it reads none of them.
       std::uint8_t flowed;
 #pragma omp atomic read
       flowed = plastic_row_[i];
-      double plastic_theta = 0, moment = 0;
+      double plastic_theta = 0;
+      bool row_flowed = flowed;
       for (int k = 0; k < count; ++k) {
         const int b = first + k, j = nbr[b];
         const double stiffness = 2.0 * omega[b] * B;  // 4ωb
@@ -324,6 +304,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
           const double updated = plastic + (trial - std::copysign(critical, trial)) / stiffness;
           const double cap = max_plastic_stretch_[i] * xi[b];
           plastic = ep[b] = std::clamp(updated, -cap, cap);
+          row_flowed = true;
           ep_reverse[reverse[b]] = plastic;  // the only write to that entry
           // Flags only go from 0 to 1 during the pass, and row j's may be set by row j too.
 #pragma omp atomic write
@@ -333,8 +314,10 @@ std::size_t LpsModel::update_plasticity(const double* y) {
           ++yielded;
         }
         plastic_theta += c[b] * plastic * V[j];  // θ^p_i = Σ_j c_ij e^p_ij V_j
-        moment += omega[b] * xi[b] * (row_extension[k] * V[j] - plastic * V[j]);
       }
+      // the moment of compute_dilatation<true> with the new e^p, in its lanes
+      const double moment =
+          kernels_.moment(row, row_extension.data(), V, row_flowed ? ep : nullptr);
       plastic_dilatation_[i] = plastic_theta;
       set_terms(i, theta, theta - plastic_theta, moment);  // compute_dilatation<true>'s, new e^p
     }

@@ -7,6 +7,7 @@
 // with the plastic extensions e^p (§4.2) held fixed between steps.
 #include <cstdint>
 
+#include "model/lps_rows.hpp"
 #include "model/model_registry.hpp"
 #include "model/plastic_flow.hpp"
 #include "model/stiffness.hpp"
@@ -54,6 +55,9 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // the force kernel is the plain one.
   template <bool Plastic, bool Energy>
   void compute_forces(const double* y, double* f, double* energy);
+  // The force pass of a row with plastic extensions: force[0..2] and, with squares, Σ ω ê² V_j.
+  void plastic_force_row(const lps::BondRow& row, int i, const double* y, double elastic_theta,
+                         double force[3], double* squares) const;
   void update_dilatation(const double* y);
   // h_ij for every directed bond: the majoriser stiffness row i gives bond b (lps_stiffness.cpp);
   // a bond's stiffness is h_ij + h_ji.
@@ -69,14 +73,13 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
   std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j over the intact bonds
   std::vector<double> dilatation_;          // θ_i, scratch of each evaluation at its y
-  // What the force pass gathers from each neighbour, packed so one gather fetches it all.
-  struct NeighbourTerms {
-    double pressure;    // D_j = κθ_j − (B_j/3) Σ_k ω ê |ξ| V_k, per force call
-    double deviatoric;  // B_j
-    double shift;       // B_j (θ_j − θ^p_j) / 3, per force call
-    double volume;      // V_j
-  };
+  // What the force pass gathers from each neighbour j: pressure D_j = κθ_j − (B_j/3) Σ_k ω ê |ξ|
+  // V_k and shift B_j (θ_j − θ^p_j)/3 per force call, deviatoric B_j and volume V_j.
+  using NeighbourTerms = lps::NeighbourTerms;
   std::vector<NeighbourTerms> terms_;
+  // The row passes this CPU runs (lps_rows.hpp), chosen at load.
+  lps::RowKernels kernels_ = lps::row_kernels();
+  lps::BondRow bond_row(int i) const;
   // Plasticity, allocated only when the scene asks for it (the elastic kernel never reads them).
   bool plastic_ = false;
   std::vector<double> plastic_extension_;          // e^p_ij per bond (Eq 11)

@@ -1,0 +1,68 @@
+#pragma once
+// The LPS model's two passes over one row of bonds (lps_model.hpp): the dilatation pass and the
+// force pass, as plain functions over the bond arrays. Each row is summed in eight lanes (bond k
+// of the row in lane k mod 8, a lane left untouched past the row's end) and the lanes reduced as
+// (l + l+4), then (l + l+2), then (0 + 1). Two implementations give the same bits: a portable one
+// and one with AVX-512 intrinsics; the model picks at load which one runs (row_kernels()).
+#include <cstddef>
+
+namespace fissure::lps {
+
+// One row's bond arrays, each indexed by the directed bond b ∈ [begin, end).
+struct BondRow {
+  int begin, end;
+  const int* neighbor;
+  const double* reference_length;  // |ξ|
+  const float* omega;              // ω_ij
+  const float* weight;             // c_ij
+  const float* reverse_weight;     // c_ji
+};
+
+// What the force pass gathers from each neighbour (LpsModel's NeighbourTerms, the same layout).
+struct NeighbourTerms {
+  double pressure, deviatoric, shift, volume;
+};
+
+struct DilatationSums {
+  double theta;   // θ_i = Σ_j c_ij e_ij V_j (Eq 6)
+  double moment;  // Σ_j ω_ij |ξ| (e_ij − e^p_ij) V_j
+};
+
+// The dilatation pass of row i at positions y: e_ij = |y_j − y_i| − |ξ|; with plastic_extension
+// (e^p per bond, or null for a row that never flowed: e^p = +0 gives the same bits), the moment
+// of e − e^p. With extension non-null, also e_ij into extension[b − begin].
+using DilatationRow = DilatationSums (*)(const BondRow& row, int i, const double* y,
+                                         const double* volume, const double* plastic_extension,
+                                         double* extension);
+
+// The moment of the return map (LpsModel::update_plasticity): Σ_j ω|ξ| (e_ij V_j − e^p_ij V_j)
+// from the extensions the dilatation pass left (e^p null: +0), the bits of that pass's moment.
+using MomentRow = double (*)(const BondRow& row, const double* extension, const double* volume,
+                             const double* plastic_extension);
+
+// The force pass of an elastic row (no e^p on its bonds in either direction): the force density
+// sum Σ_j (t_ij + t_ji) V_j n_ij into force[0..2] (Eqs 2–3), and with squares non-null also
+// Σ_j ω ê² V_j with ê = e − θ_e |ξ|/3, θ_e = elastic_theta (energy_density's sum).
+struct ForceRowInput {
+  const BondRow* row;
+  int i;
+  const double* y;
+  const NeighbourTerms* terms;
+  double elastic_theta;
+};
+using ForceRow = void (*)(const ForceRowInput& in, double force[3], double* squares);
+
+struct RowKernels {
+  const char* name;  // "avx512" or "portable"
+  DilatationRow dilatation;
+  MomentRow moment;
+  ForceRow force;
+};
+
+RowKernels portable_row_kernels();
+// Null members where this build or this CPU has no AVX-512 (F, VL and DQ).
+RowKernels avx512_row_kernels();
+// AVX-512 where the CPU has it, else portable.
+RowKernels row_kernels();
+
+}  // namespace fissure::lps

@@ -1,0 +1,97 @@
+// The row passes of lps_rows.hpp in plain C++: eight lane sums, reduced in the order the AVX-512
+// version reduces them, with the same operations per bond (no fused multiply-add: the model's
+// sources are compiled with -ffp-contract=off), so that both give the same bits.
+#include <cmath>
+
+#include "model/lps_rows.hpp"
+
+namespace fissure::lps {
+
+namespace {
+
+constexpr int lanes = 8;
+
+double reduce(const double (&sum)[lanes]) {
+  const double a0 = sum[0] + sum[4], a1 = sum[1] + sum[5], a2 = sum[2] + sum[6],
+               a3 = sum[3] + sum[7];
+  return (a0 + a2) + (a1 + a3);
+}
+
+DilatationSums dilatation_row(const BondRow& row, int i, const double* y, const double* V,
+                              const double* ep, double* extension) {
+  const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+  double theta[lanes] = {}, moment[lanes] = {};
+  for (int b = row.begin; b < row.end; ++b) {
+    const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
+    const double* yj = y + 3 * j;
+    const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+    const double xi = row.reference_length[b];
+    const double e = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi;  // e_ij
+    if (extension) extension[b - row.begin] = e;
+    const double eV = e * V[j];
+    theta[lane] += double(row.weight[b]) * eV;  // c_ij e_ij V_j (Eq 6)
+    const double omega_xi = double(row.omega[b]) * xi;
+    moment[lane] += ep ? omega_xi * (eV - ep[b] * V[j]) : omega_xi * eV;
+  }
+  return {reduce(theta), reduce(moment)};
+}
+
+double moment_row(const BondRow& row, const double* extension, const double* V, const double* ep) {
+  double moment[lanes] = {};
+  for (int b = row.begin; b < row.end; ++b) {
+    const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
+    const double xi = row.reference_length[b];
+    const double omega_xi = double(row.omega[b]) * xi, eV = extension[b - row.begin] * V[j];
+    moment[lane] += ep ? omega_xi * (eV - ep[b] * V[j]) : omega_xi * eV;
+  }
+  return reduce(moment);
+}
+
+// t_ij + t_ji = c_ij D_i + c_ji D_j + ω_ij [e (B_i + B_j) − |ξ| (S_i + S_j)] (Eqs 4, 8, 12; notes
+// §6), times V_j/ℓ along d = y_j − y_i.
+void force_row(const ForceRowInput& in, double force[3], double* squares) {
+  const BondRow& row = *in.row;
+  const int i = in.i;
+  const double* y = in.y;
+  const NeighbourTerms* terms = in.terms;
+  const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
+  const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
+  double f0[lanes] = {}, f1[lanes] = {}, f2[lanes] = {}, w[lanes] = {};
+  for (int b = row.begin; b < row.end; ++b) {
+    const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
+    const double* yj = y + 3 * j;
+    const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
+    const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    const double xi = row.reference_length[b];
+    const double e = length - xi;
+    const NeighbourTerms& tj = terms[j];
+    const double deviatoric = e * (Bi + tj.deviatoric) - xi * (Si + tj.shift);
+    const double omega = row.omega[b];
+    const double t = (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) +
+                     omega * deviatoric;
+    // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
+    const double s = length > 0 ? t * tj.volume / length : 0.0;
+    f0[lane] += s * d0;
+    f1[lane] += s * d1;
+    f2[lane] += s * d2;
+    if (squares) {
+      const double e_hat = e - in.elastic_theta * xi / 3.0;  // ê_ij
+      w[lane] += omega * tj.volume * e_hat * e_hat;
+    }
+  }
+  force[0] = reduce(f0);
+  force[1] = reduce(f1);
+  force[2] = reduce(f2);
+  if (squares) *squares = reduce(w);
+}
+
+}  // namespace
+
+RowKernels portable_row_kernels() { return {"portable", dilatation_row, moment_row, force_row}; }
+
+RowKernels row_kernels() {
+  const RowKernels simd = avx512_row_kernels();
+  return simd.force ? simd : portable_row_kernels();
+}
+
+}  // namespace fissure::lps
