@@ -16,6 +16,7 @@ PureElasticKernel::PureElasticKernel(const Scene& scene) : families_(scene.famil
   omega_.resize(omega.size());
   weighted_volume_.resize(n);
   bulk_modulus_.resize(n);
+  volume_ = p.volume;
   terms_.resize(n);
   for (int i = 0; i < n; ++i) {
     const Material& material = scene.config.bodies[p.body[i]].material;
@@ -38,7 +39,41 @@ PureElasticKernel::PureElasticKernel(const Scene& scene) : families_(scene.famil
   }
 }
 
+// D_i and S_i from θ_i and Σ_j ω e |ξ| V_j (LpsModel::set_terms, elastic).
+void PureElasticKernel::set_terms(int i, double theta, double moment) {
+  const double B = terms_[i].deviatoric;
+  terms_[i].pressure =
+      bulk_modulus_[i] * theta - B / 3.0 * (moment - theta * weighted_volume_[i] / 3.0);
+  terms_[i].shift = B * theta / 3.0;
+}
+
 void PureElasticKernel::forces(const double* y, double* f) {
+  const int n = static_cast<int>(terms_.size());
+  auto row = [&](int i) {
+    return lps::BondRow{families_.offsets[i],
+                        families_.offsets[i + 1],
+                        families_.neighbors.data(),
+                        families_.reference_length.data(),
+                        omega_.data(),
+                        weight_.data(),
+                        reverse_weight_.data()};
+  };
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const lps::DilatationSums sums =
+        kernels_.dilatation(row(i), i, y, volume_.data(), nullptr, nullptr);
+    set_terms(i, sums.theta, sums.moment);
+  }
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const lps::BondRow r = row(i);
+    double force[3];
+    kernels_.force({&r, i, y, terms_.data(), 0.0}, force, nullptr);
+    for (int k = 0; k < 3; ++k) f[3 * i + k] = terms_[i].volume * force[k];
+  }
+}
+
+void PureElasticKernel::sequential_forces(const double* y, double* f) {
   const int n = static_cast<int>(terms_.size());
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
@@ -56,13 +91,10 @@ void PureElasticKernel::forces(const double* y, double* f) {
       const double* yj = y + 3 * j;
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double extension = (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi[b]) * terms[j].volume;
-      theta += c[b] * extension;
-      moment += omega[b] * xi[b] * extension;
+      theta += c[b] * extension;               // Eq 6
+      moment += omega[b] * xi[b] * extension;  // Σ ω e |ξ| V_j
     }
-    const double B = terms[i].deviatoric;
-    terms[i].pressure =
-        bulk_modulus_[i] * theta - B / 3.0 * (moment - theta * weighted_volume_[i] / 3.0);
-    terms[i].shift = B * theta / 3.0;
+    set_terms(i, theta, moment);
   }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -76,7 +108,7 @@ void PureElasticKernel::forces(const double* y, double* f) {
       const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const NeighbourTerms& tj = terms[j];
       const double deviatoric = (length - xi[b]) * (Bi + tj.deviatoric) - xi[b] * (Si + tj.shift);
-      const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;
+      const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;  // Eqs 4, 8
       const double s = length > 0 ? t * tj.volume / length : 0.0;
       f0 += s * d0;
       f1 += s * d1;

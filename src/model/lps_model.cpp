@@ -285,13 +285,20 @@ std::size_t LpsModel::update_plasticity(const double* y) {
       if (static_cast<int>(row_extension.size()) < count) row_extension.resize(count);
       const lps::BondRow row = bond_row(i);
       // θ_i = Σ_j c_ij e_ij V_j (Eq 6), and e_ij into row_extension
-      const double theta = kernels_.dilatation(row, i, y, V, nullptr, row_extension.data()).theta;
+      const lps::DilatationSums sums =
+          kernels_.dilatation(row, i, y, V, nullptr, row_extension.data());
+      const double theta = sums.theta;
       const double B = terms_[i].deviatoric, critical = yield_force_[i];
       const double trial_theta = theta - plastic_dilatation_[i];
-      // A row that never flowed has e^p = +0 on every bond: it reads none of them.
+      // A row that never flowed has e^p = +0 on every bond: it reads none of them, and where no
+      // bond yields now either, θ^p_i stays +0 and the moment is the dilatation pass's.
       std::uint8_t flowed;
 #pragma omp atomic read
       flowed = plastic_row_[i];
+      if (!flowed && !kernels_.yields(row, row_extension.data(), B, trial_theta, critical)) {
+        set_terms(i, theta, trial_theta, sums.moment);
+        continue;
+      }
       double plastic_theta = 0;
       bool row_flowed = flowed;
       for (int k = 0; k < count; ++k) {

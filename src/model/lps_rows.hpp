@@ -52,11 +52,18 @@ struct ForceRowInput {
 };
 using ForceRow = void (*)(const ForceRowInput& in, double force[3], double* squares);
 
+// The return map's test on a row that never flowed (e^p = +0): whether any bond's trial
+// deviatoric force 2ωB (e − θ|ξ|/3) exceeds the yield force A^c (Eqs 12, 14), the same test in
+// the same arithmetic as LpsModel::update_plasticity's.
+using YieldRow = bool (*)(const BondRow& row, const double* extension, double deviatoric,
+                          double trial_theta, double yield_force);
+
 struct RowKernels {
   const char* name;  // "avx512" or "portable"
   DilatationRow dilatation;
   MomentRow moment;
   ForceRow force;
+  YieldRow yields;
 };
 
 RowKernels portable_row_kernels();

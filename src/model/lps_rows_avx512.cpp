@@ -165,13 +165,32 @@ void force_row(const ForceRowInput& in, double force[3], double* squares) {
     force_row_sums<false>(in, force, nullptr);
 }
 
+bool yields(const BondRow& row, const double* extension, double B, double trial_theta,
+            double yield_force) {
+  const __m512d deviatoric = _mm512_set1_pd(B), theta = _mm512_set1_pd(trial_theta),
+                critical = _mm512_set1_pd(yield_force), two = _mm512_set1_pd(2.0),
+                three = _mm512_set1_pd(3.0), zero = _mm512_setzero_pd();
+  for (int b = row.begin; b < row.end; b += 8) {
+    const __mmask8 m = lanes_left(b, row.end);
+    const __m512d xi = _mm512_maskz_loadu_pd(m, row.reference_length + b);
+    const __m512d stiffness =
+        _mm512_mul_pd(_mm512_mul_pd(two, widen(m, row.omega + b)), deviatoric);  // 4ωb
+    const __m512d e = _mm512_maskz_loadu_pd(m, extension + (b - row.begin));
+    const __m512d trial =
+        _mm512_mul_pd(stiffness, _mm512_sub_pd(e, _mm512_div_pd(_mm512_mul_pd(theta, xi), three)));
+    const __mmask8 stiff = _mm512_mask_cmp_pd_mask(m, stiffness, zero, _CMP_GT_OQ);
+    if (_mm512_mask_cmp_pd_mask(stiff, _mm512_abs_pd(trial), critical, _CMP_GT_OQ)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 RowKernels avx512_row_kernels() {
   if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512vl") ||
       !__builtin_cpu_supports("avx512dq"))
-    return {"avx512", nullptr, nullptr, nullptr};
-  return {"avx512", dilatation_row, moment_row, force_row};
+    return {"avx512", nullptr, nullptr, nullptr, nullptr};
+  return {"avx512", dilatation_row, moment_row, force_row, yields};
 }
 
 }  // namespace fissure::lps
@@ -180,7 +199,7 @@ RowKernels avx512_row_kernels() {
 
 namespace fissure::lps {
 
-RowKernels avx512_row_kernels() { return {"avx512", nullptr, nullptr, nullptr}; }
+RowKernels avx512_row_kernels() { return {"avx512", nullptr, nullptr, nullptr, nullptr}; }
 
 }  // namespace fissure::lps
 

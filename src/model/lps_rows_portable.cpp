@@ -85,9 +85,22 @@ void force_row(const ForceRowInput& in, double force[3], double* squares) {
   if (squares) *squares = reduce(w);
 }
 
+bool yields(const BondRow& row, const double* extension, double B, double trial_theta,
+            double yield_force) {
+  for (int b = row.begin; b < row.end; ++b) {
+    const double xi = row.reference_length[b];
+    const double stiffness = 2.0 * row.omega[b] * B;  // 4ωb
+    const double trial = stiffness * (extension[b - row.begin] - trial_theta * xi / 3.0);
+    if (stiffness > 0 && std::abs(trial) > yield_force) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-RowKernels portable_row_kernels() { return {"portable", dilatation_row, moment_row, force_row}; }
+RowKernels portable_row_kernels() {
+  return {"portable", dilatation_row, moment_row, force_row, yields};
+}
 
 RowKernels row_kernels() {
   const RowKernels simd = avx512_row_kernels();

@@ -1,0 +1,155 @@
+// The LPS row passes (model/lps_rows.hpp): the AVX-512 kernels give the portable kernels' bits on
+// every row of a tet block (rows of every length mod 8, so every tail mask), the dilatation sums
+// equal the same sums taken in bond order to round-off, and the yield test decides as the return
+// map's arithmetic does at each row's threshold. A lane reduced in another order, a tail lane
+// lost or counted twice, a neighbour's term gathered from the wrong field (the portable kernel
+// reads them by name) or a term computed with other operations fails the bitwise checks.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "model/lps_rows.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+// Random bond arrays on a real family graph, with a few collapsed and zero-weight bonds.
+struct Rows {
+  explicit Rows(const Scene& scene) : families(scene.families) {
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const Particles& p = scene.particles;
+    const std::size_t bonds = families.directed_bonds();
+    y = p.reference;
+    for (double& v : y) v += 1e-3 * u(random);
+    y[3] = y[3 * families.neighbors[families.offsets[1]]];  // a collapsed bond of row 1
+    y[4] = y[3 * families.neighbors[families.offsets[1]] + 1];
+    y[5] = y[3 * families.neighbors[families.offsets[1]] + 2];
+    volume = p.volume;
+    for (std::size_t b = 0; b < bonds; ++b) {
+      omega.push_back(static_cast<float>(b % 11 == 0 ? 0.0 : 1.0 + 0.5 * u(random)));
+      weight.push_back(static_cast<float>(b % 13 == 0 ? 0.0 : u(random)));
+      reverse_weight.push_back(static_cast<float>(u(random)));
+      plastic.push_back(b % 3 == 0 ? 0.0 : 1e-4 * u(random));
+    }
+    for (int i = 0; i < p.count(); ++i)
+      terms.push_back({u(random), 1.0 + u(random), u(random), p.volume[i]});
+  }
+  lps::BondRow row(int i) const {
+    return {families.offsets[i],
+            families.offsets[i + 1],
+            families.neighbors.data(),
+            families.reference_length.data(),
+            omega.data(),
+            weight.data(),
+            reverse_weight.data()};
+  }
+  const Families& families;
+  std::vector<double> y, volume, plastic;
+  std::vector<float> omega, weight, reverse_weight;
+  std::vector<lps::NeighbourTerms> terms;
+};
+
+// θ_i and the moment summed in bond order, with Σ|term| for the round-off bound.
+struct OrderedSums {
+  double theta, theta_size, moment, moment_size;
+};
+
+OrderedSums bond_order(const Rows& r, int i, const double* ep) {
+  OrderedSums s{};
+  const lps::BondRow row = r.row(i);
+  for (int b = row.begin; b < row.end; ++b) {
+    const int j = row.neighbor[b];
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += std::pow(r.y[3 * j + k] - r.y[3 * i + k], 2);
+    const double xi = row.reference_length[b];
+    const double eV = (std::sqrt(d2) - xi) * r.volume[j];
+    s.theta += row.weight[b] * eV;
+    s.theta_size += std::abs(row.weight[b] * eV);
+    const double m = row.omega[b] * xi * (eV - (ep ? ep[b] * r.volume[j] : 0.0));
+    s.moment += m;
+    s.moment_size += std::abs(m);
+  }
+  return s;
+}
+
+TEST(RowKernels, Avx512GivesThePortableBitsOnEveryRow) {
+  const lps::RowKernels simd = lps::avx512_row_kernels();
+  if (!simd.force) GTEST_SKIP() << "this CPU or build has no AVX-512";
+  const lps::RowKernels portable = lps::portable_row_kernels();
+  const Scene scene = test::block_scene(0.1, 0.02, 1e6, 1e6);
+  const Rows r(scene);
+  const int n = scene.particles.count();
+  std::vector<int> lengths_mod_8(8, 0);
+  long checked = 0, yielding = 0;  // rows with a bond that can yield
+  for (int i = 0; i < n; ++i) {
+    const lps::BondRow row = r.row(i);
+    const int count = row.end - row.begin;
+    ++lengths_mod_8[count % 8];
+    for (const double* ep : {static_cast<const double*>(nullptr), r.plastic.data()}) {
+      std::vector<double> e_simd(count), e_portable(count);
+      const auto a = simd.dilatation(row, i, r.y.data(), r.volume.data(), ep, e_simd.data());
+      const auto b =
+          portable.dilatation(row, i, r.y.data(), r.volume.data(), ep, e_portable.data());
+      const auto c = simd.dilatation(row, i, r.y.data(), r.volume.data(), ep, nullptr);
+      ASSERT_TRUE(same_bits(a.theta, b.theta)) << "row " << i;
+      ASSERT_TRUE(same_bits(a.moment, b.moment)) << "row " << i;
+      ASSERT_TRUE(same_bits(a.theta, c.theta) && same_bits(a.moment, c.moment)) << "row " << i;
+      for (int k = 0; k < count; ++k) ASSERT_TRUE(same_bits(e_simd[k], e_portable[k]));
+      // the return map's moment from the kept extensions: the dilatation pass's bits
+      const double m = simd.moment(row, e_simd.data(), r.volume.data(), ep);
+      ASSERT_TRUE(same_bits(m, a.moment)) << "row " << i;
+      ASSERT_TRUE(same_bits(m, portable.moment(row, e_simd.data(), r.volume.data(), ep)));
+      const OrderedSums s = bond_order(r, i, ep);
+      EXPECT_LE(std::abs(a.theta - s.theta), 1e-14 * s.theta_size) << "row " << i;
+      EXPECT_LE(std::abs(a.moment - s.moment), 1e-14 * s.moment_size) << "row " << i;
+      // the yield test at the row's largest trial force: not past it, and just past the one below
+      double largest = 0;
+      for (int k = row.begin; k < row.end; ++k) {
+        const double stiffness = 2.0 * row.omega[k] * 1e3;
+        const double trial =
+            stiffness * (e_portable[k - row.begin] - a.theta * row.reference_length[k] / 3.0);
+        if (stiffness > 0) largest = std::max(largest, std::abs(trial));
+      }
+      const double below = std::nextafter(largest, 0.0);
+      for (const double critical : {largest, below}) {
+        const bool y_simd = simd.yields(row, e_simd.data(), 1e3, a.theta, critical);
+        ASSERT_EQ(y_simd, portable.yields(row, e_simd.data(), 1e3, a.theta, critical));
+        ASSERT_EQ(y_simd, critical < largest) << "row " << i;
+      }
+      yielding += largest > 0;
+    }
+    for (const double theta : {0.0, 0.37}) {
+      const lps::ForceRowInput in{&row, i, r.y.data(), r.terms.data(), theta};
+      double f_simd[3], f_portable[3], w_simd = 0, w_portable = 0, f_plain[3];
+      simd.force(in, f_simd, &w_simd);
+      portable.force(in, f_portable, &w_portable);
+      simd.force(in, f_plain, nullptr);
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(same_bits(f_simd[k], f_portable[k])) << "row " << i << " component " << k;
+        ASSERT_TRUE(same_bits(f_simd[k], f_plain[k])) << "row " << i << " component " << k;
+      }
+      ASSERT_TRUE(same_bits(w_simd, w_portable)) << "row " << i;
+    }
+    ++checked;
+  }
+  std::printf("%ld rows, row lengths mod 8:", checked);
+  for (int k = 0; k < 8; ++k) std::printf(" %d", lengths_mod_8[k]);
+  std::printf("; rows with a bond that can yield, tested at its threshold: %ld of %ld\n", yielding,
+              2 * checked);
+  for (int k = 0; k < 8; ++k)
+    EXPECT_GT(lengths_mod_8[k], 0) << "no row of length " << k << " mod 8";
+  EXPECT_GT(yielding, checked);
+}
+
+}  // namespace
+}  // namespace fissure
