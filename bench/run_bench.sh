@@ -5,9 +5,12 @@
 #
 #   (a) runs $BUILD_DIR/bench_elastic_step and echoes its "key value" output;
 #   (b) runs LAMMPS serially (1 rank, OMP_NUM_THREADS=1) on a simple-cubic
-#       block with the same particle count (bench/lammps/in.peri_lps) and
-#       converts its Pair time into ns per directed bond per step;
-#   (c) prints lammps_ns_per_bond and ratio_lammps_over_fissure_1thread.
+#       block with the same particle count (bench/lammps/in.peri_lps), with
+#       pair_style peri/pmb (bond-based, the bound) and peri/lps (the same
+#       model as Fissure's), and converts each Pair time into ns per directed
+#       bond per step;
+#   (c) prints lammps_ns_per_bond, lammps_pmb_ns_per_bond, both ratios of one
+#       thread and the two-thread speed-up against the issue's targets.
 #
 # Environment overrides:
 #   LMP            LAMMPS executable            (default: lmp)
@@ -26,7 +29,7 @@ script_dir=$(cd -- "$(dirname -- "${BASH_SOURCE[0]}")" && pwd)
 repo_root=$(cd -- "$script_dir/.." && pwd)
 
 if [[ $# -gt 1 || ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,22p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+  sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 
@@ -113,75 +116,88 @@ else
   n=46
 fi
 
-lammps_log=$tmpdir/log.lammps
-lammps_screen=$tmpdir/screen.lammps
-echo
-echo "=== LAMMPS: $lmp_bin, pair_style peri/lps, n=$n (n^3=$((n * n * n)) particles), horizon=${horizon_h}a, steps=$steps"
-echo "    OMP_NUM_THREADS=1 $lmp_bin -in $lammps_input -var n $n -var horizon_h $horizon_h -var steps $steps -log $lammps_log"
-t_start=$(date +%s.%N)
-if ! (cd "$tmpdir" && OMP_NUM_THREADS=1 "$lmp_bin" -in "$lammps_input" \
-        -var n "$n" -var horizon_h "$horizon_h" -var steps "$steps" \
-        -log "$lammps_log" >"$lammps_screen" 2>&1); then
-  echo "error: LAMMPS run failed; last lines of its output:" >&2
-  tail -n 20 "$lammps_screen" >&2
-  KEEP_LOGS=1
-  exit 4
-fi
-t_end=$(date +%s.%N)
-
-# Parse the log.  The timed run is the last "Loop time" / "Pair |" block
-# ("run 0 post no" before it prints a Loop line but no breakdown).
-read -r l_pair l_loop l_steps l_atoms l_bonds < <(awk '
-  /^Loop time of / {
-    loop = $4
-    for (i = 1; i <= NF; i++) {
-      if ($i == "for")  steps = $(i + 1)
-      if ($i == "with") atoms = $(i + 1)
-    }
-  }
-  /^Pair[ \t]*\|/ { split($0, f, "|"); pair = f[3] + 0 }
-  /^[ \t]*total # of bonds =/ { bonds = $NF }
-  END { printf "%s %s %s %s %s\n",
-        (pair == "" ? "NA" : pair), (loop == "" ? "NA" : loop),
-        (steps == "" ? "NA" : steps), (atoms == "" ? "NA" : atoms),
-        (bonds == "" ? "NA" : bonds) }' "$lammps_log")
-
-for v in "$l_pair" "$l_loop" "$l_steps" "$l_atoms" "$l_bonds"; do
-  if [[ $v == NA ]]; then
-    echo "error: could not parse the LAMMPS log (pair=$l_pair loop=$l_loop steps=$l_steps atoms=$l_atoms bonds=$l_bonds)" >&2
+# One serial LAMMPS run of pair style $1 (lps or pmb); prints its figures as "<$2>key value" lines
+# and leaves its Pair ns per directed bond per step in lammps_ns, its counts in l_atoms, l_bonds.
+run_lammps() {
+  local style=$1 prefix=$2
+  local lammps_log=$tmpdir/log.$style.lammps lammps_screen=$tmpdir/screen.$style.lammps
+  echo
+  echo "=== LAMMPS: $lmp_bin, pair_style peri/$style, n=$n (n^3=$((n * n * n)) particles), horizon=${horizon_h}a, steps=$steps"
+  echo "    OMP_NUM_THREADS=1 $lmp_bin -in $lammps_input -var style $style -var n $n -var horizon_h $horizon_h -var steps $steps -log $lammps_log"
+  local t_start t_end
+  t_start=$(date +%s.%N)
+  if ! (cd "$tmpdir" && OMP_NUM_THREADS=1 "$lmp_bin" -in "$lammps_input" -var style "$style" \
+          -var n "$n" -var horizon_h "$horizon_h" -var steps "$steps" \
+          -log "$lammps_log" >"$lammps_screen" 2>&1); then
+    echo "error: LAMMPS run failed; last lines of its output:" >&2
+    tail -n 20 "$lammps_screen" >&2
     KEEP_LOGS=1
-    exit 5
+    exit 4
   fi
-done
+  t_end=$(date +%s.%N)
 
-# Sanity check: no bond may break (broken bonds are skipped and would make
-# LAMMPS look faster).  Last value of the c_dmgsum thermo column.
-damage=$(awk '
-  $1 == "Step" { col = 0; for (i = 1; i <= NF; i++) if ($i == "c_dmgsum") col = i; next }
-  col && $1 ~ /^[0-9]+$/ && NF >= col { d = $col }
-  /^Loop time/ { col = 0 }
-  END { print (d == "" ? "NA" : d) }' "$lammps_log")
-if [[ $damage == NA ]]; then
-  echo "warning: could not read the damage sum from the LAMMPS log"
-elif awk -v d="$damage" 'BEGIN { exit !(d + 0 != 0) }'; then
-  echo "warning: LAMMPS damage sum is $damage (bonds broke); the timing is not comparable"
-fi
+  # Parse the log.  The timed run is the last "Loop time" / "Pair |" block
+  # ("run 0 post no" before it prints a Loop line but no breakdown).
+  local l_pair l_loop l_steps
+  read -r l_pair l_loop l_steps l_atoms l_bonds < <(awk '
+    /^Loop time of / {
+      loop = $4
+      for (i = 1; i <= NF; i++) {
+        if ($i == "for")  steps = $(i + 1)
+        if ($i == "with") atoms = $(i + 1)
+      }
+    }
+    /^Pair[ \t]*\|/ { split($0, f, "|"); pair = f[3] + 0 }
+    /^[ \t]*total # of bonds =/ { bonds = $NF }
+    END { printf "%s %s %s %s %s\n",
+          (pair == "" ? "NA" : pair), (loop == "" ? "NA" : loop),
+          (steps == "" ? "NA" : steps), (atoms == "" ? "NA" : atoms),
+          (bonds == "" ? "NA" : bonds) }' "$lammps_log")
 
-awk -v pair="$l_pair" -v loop="$l_loop" -v steps="$l_steps" \
-    -v atoms="$l_atoms" -v bonds="$l_bonds" -v t0="$t_start" -v t1="$t_end" \
-    -v damage="$damage" 'BEGIN {
-  printf "lammps_particles %d\n", atoms
-  printf "lammps_directed_bonds %d\n", bonds
-  printf "lammps_bonds_per_particle %.3f\n", bonds / atoms
-  printf "lammps_steps %d\n", steps
-  printf "lammps_pair_seconds %.6g\n", pair
-  printf "lammps_loop_seconds %.6g\n", loop
-  printf "lammps_wall_seconds %.2f\n", t1 - t0
-  printf "lammps_damage_sum %s\n", damage
-  printf "lammps_ns_per_bond_looptime %.3f\n", loop / steps / bonds * 1e9
-}'
-lammps_ns=$(awk -v pair="$l_pair" -v steps="$l_steps" -v bonds="$l_bonds" \
-                'BEGIN { printf "%.3f", pair / steps / bonds * 1e9 }')
+  local v
+  for v in "$l_pair" "$l_loop" "$l_steps" "$l_atoms" "$l_bonds"; do
+    if [[ $v == NA ]]; then
+      echo "error: could not parse the LAMMPS log (pair=$l_pair loop=$l_loop steps=$l_steps atoms=$l_atoms bonds=$l_bonds)" >&2
+      KEEP_LOGS=1
+      exit 5
+    fi
+  done
+
+  # Sanity check: no bond may break (broken bonds are skipped and would make
+  # LAMMPS look faster).  Last value of the c_dmgsum thermo column.
+  local damage
+  damage=$(awk '
+    $1 == "Step" { col = 0; for (i = 1; i <= NF; i++) if ($i == "c_dmgsum") col = i; next }
+    col && $1 ~ /^[0-9]+$/ && NF >= col { d = $col }
+    /^Loop time/ { col = 0 }
+    END { print (d == "" ? "NA" : d) }' "$lammps_log")
+  if [[ $damage == NA ]]; then
+    echo "warning: could not read the damage sum from the LAMMPS log"
+  elif awk -v d="$damage" 'BEGIN { exit !(d + 0 != 0) }'; then
+    echo "warning: LAMMPS damage sum is $damage (bonds broke); the timing is not comparable"
+  fi
+
+  awk -v pair="$l_pair" -v loop="$l_loop" -v steps="$l_steps" -v p="$prefix" \
+      -v atoms="$l_atoms" -v bonds="$l_bonds" -v t0="$t_start" -v t1="$t_end" \
+      -v damage="$damage" 'BEGIN {
+    printf "%sparticles %d\n", p, atoms
+    printf "%sdirected_bonds %d\n", p, bonds
+    printf "%sbonds_per_particle %.3f\n", p, bonds / atoms
+    printf "%ssteps %d\n", p, steps
+    printf "%spair_seconds %.6g\n", p, pair
+    printf "%sloop_seconds %.6g\n", p, loop
+    printf "%swall_seconds %.2f\n", p, t1 - t0
+    printf "%sdamage_sum %s\n", p, damage
+    printf "%sns_per_bond_looptime %.3f\n", p, loop / steps / bonds * 1e9
+  }'
+  lammps_ns=$(awk -v pair="$l_pair" -v steps="$l_steps" -v bonds="$l_bonds" \
+                  'BEGIN { printf "%.3f", pair / steps / bonds * 1e9 }')
+}
+
+# The bond-based PMB model first: a lower bound on what any peridynamic kernel costs there.
+run_lammps pmb lammps_pmb_
+pmb_ns=$lammps_ns
+run_lammps lps lammps_
 
 # --------------------------------------------------------------------------
 # (c) Comparison
@@ -189,10 +205,16 @@ lammps_ns=$(awk -v pair="$l_pair" -v steps="$l_steps" -v bonds="$l_bonds" \
 echo
 echo "=== Comparison (ns per directed bond per step; LAMMPS: Pair time, 1 rank, 1 thread)"
 echo "lammps_ns_per_bond $lammps_ns"
+echo "lammps_pmb_ns_per_bond $pmb_ns"
 if [[ -n $f_t1 ]]; then
-  awk -v l="$lammps_ns" -v f="$f_t1" 'BEGIN {
-    if (f + 0 > 0) printf "ratio_lammps_over_fissure_1thread %.3f\n", l / f
-    else print "ratio_lammps_over_fissure_1thread NA"
+  f_t2=$(get_key "$fissure_out" ns_per_bond_2threads)
+  awk -v l="$lammps_ns" -v f="$f_t1" -v pmb="$pmb_ns" -v f2="$f_t2" 'BEGIN {
+    if (f + 0 > 0) {
+      printf "ratio_lammps_over_fissure_1thread %.3f\n", l / f
+      printf "ratio_fissure_over_lammps_1thread %.3f (target <= 0.12)\n", f / l
+      printf "ratio_fissure_over_lammps_pmb_1thread %.3f\n", f / pmb
+      if (f2 + 0 > 0) printf "speedup_2threads %.2f (target >= 1.85)\n", f / f2
+    } else print "ratio_lammps_over_fissure_1thread NA"
   }'
   if [[ -n $f_particles && $f_particles != "$l_atoms" ]]; then
     echo "note: particle counts differ (fissure $f_particles, lammps $l_atoms)"
