@@ -124,6 +124,10 @@ std::size_t BondBreaking::find_exact(const double* y, int i) {
     exceeded_[b] = e > scale * (anisotropic ? reach_[b] : horizon_[i]);
     exceeded += exceeded_[b];
   }
+  if (exceeded > 0) {
+#pragma omp critical(fissure_exceeding_rows)
+    exceeding_.push_back(i);
+  }
   return exceeded;
 }
 
@@ -183,11 +187,11 @@ bool BondBreaking::prefilter_row(const double* y, int i, double drift_bound) {
 std::size_t BondBreaking::find(const double* y) {
   const int n = static_cast<int>(intact_.size());
   std::size_t exceeded = 0;
+  exceeding_.clear();
   if (prefilter_.empty()) {
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
     for (int i = 0; i < n; ++i) exceeded += find_exact(y, i);
-    changed_.clear();
-    return exceeded;
+    return found(exceeded);
   }
   double largest = 0;
   bool full = full_check_due_;
@@ -209,18 +213,33 @@ std::size_t BondBreaking::find(const double* y) {
     if (!full && slack_[i] > drift_[i] + largest) continue;
     if (prefilter_row(y, i, drift_[i] + largest)) exceeded += find_exact(y, i);
   }
+  return found(exceeded);
+}
+
+// After find()'s passes: the rows apply() will change, from the rows find_exact() recorded.
+std::size_t BondBreaking::found(std::size_t exceeded) {
   changed_.clear();
+  changing_.clear();
+  std::sort(exceeding_.begin(), exceeding_.end());
+  for (const int i : exceeding_) {
+    changing_.push_back(i);
+    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+      if (exceeded_[b]) changing_.push_back(families_.neighbors[b]);
+  }
+  std::sort(changing_.begin(), changing_.end());
+  changing_.erase(std::unique(changing_.begin(), changing_.end()), changing_.end());
   return exceeded;
 }
 
 std::size_t BondBreaking::apply() {
-  const int n = static_cast<int>(intact_.size());
   const auto& off = families_.offsets;
   // A bond breaks in both rows when either row's criterion is exceeded; each row updates only
-  // its own entries, so the rows can run in parallel.
+  // its own entries, so the rows can run in parallel. Only find()'s rows can change.
   std::size_t removed = 0;
+  const int rows = static_cast<int>(changing_.size());
 #pragma omp parallel for reduction(+ : removed) schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int k = 0; k < rows; ++k) {
+    const int i = changing_[k];
     bool changed = false;
     for (int b = off[i]; b < off[i + 1]; ++b)
       if (!broken_[b] && (exceeded_[b] || exceeded_[families_.reverse[b]])) {
@@ -236,8 +255,9 @@ std::size_t BondBreaking::apply() {
     }
   }
   std::sort(changed_.begin(), changed_.end());
-#pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < exceeded_.size(); ++b) exceeded_[b] = 0;
+  for (const int i : exceeding_)
+    std::fill(exceeded_.begin() + off[i], exceeded_.begin() + off[i + 1], std::uint8_t{0});
+  exceeding_.clear();
   broken_pairs_ += removed / 2;
   return removed / 2;
 }

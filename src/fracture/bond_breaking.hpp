@@ -22,6 +22,9 @@ class BondBreaking {
   // (directed); apply() breaks them and returns how many pairs broke.
   std::size_t find(const double* y);
   std::size_t apply();
+  // After find(), until the next: the rows apply() changes (those of the exceeded bonds and of
+  // their partners), in increasing order; only their energy changes (Model::rows_energy).
+  const std::vector<int>& rows_to_change() const { return changing_; }
   // For checkpoints: breaks every bond `broken` marks (1 per directed bond) that is intact here,
   // through the model, and recomputes the damage.
   void restore(const std::vector<std::uint8_t>& broken);
@@ -43,6 +46,7 @@ class BondBreaking {
   double update_drift(const double* y);
   bool prefilter_row(const double* y, int i, double drift_bound);
   std::size_t find_exact(const double* y, int i);
+  std::size_t found(std::size_t exceeded);
 
   const Families& families_;
   Model& model_;
@@ -64,6 +68,8 @@ class BondBreaking {
   std::vector<int> intact_;     // n_i
   std::vector<double> damage_;  // φ_i
   std::vector<int> changed_;    // rows that lost bonds in the last run
+  std::vector<int> exceeding_;  // rows with an exceeded bond, from find() to apply()
+  std::vector<int> changing_;   // rows_to_change()
   std::size_t broken_pairs_ = 0;
 };
 

@@ -16,19 +16,18 @@ PostStep::PostStep(const Scene& scene, Model& model, bool measure_energy)
 
 bool PostStep::run(const double* y, const double* velocity, double dt) {
   ++calls_;
-  PlasticFlow* plastic_flow = model_.plastic_flow();
-  const bool measure_plastic = measure_energy_ && plastic_flow;
-  double stored = measure_plastic ? model_.elastic_energy(y) : 0;
-  if (plastic_flow && plastic_flow->update_plasticity(y) > 0 && measure_plastic) {
-    const double after = model_.elastic_energy(y);
-    released_.plastic += stored - after;
-    stored = after;
+  if (PlasticFlow* plastic_flow = model_.plastic_flow()) {
+    const double stored = measure_energy_ ? model_.elastic_energy(y) : 0;
+    if (plastic_flow->update_plasticity(y) > 0 && measure_energy_)
+      released_.plastic += stored - model_.elastic_energy(y);
   }
   bool changed = false;
   if (bond_breaking_ && bond_breaking_->find(y) > 0) {
-    if (measure_energy_ && !measure_plastic) stored = model_.elastic_energy(y);
+    // breaking changes only the energy of the broken bonds' rows
+    const std::vector<int>& rows = bond_breaking_->rows_to_change();
+    const double before = measure_energy_ ? model_.rows_energy(y, rows) : 0;
     changed = bond_breaking_->apply() > 0;
-    if (measure_energy_) released_.fracture += stored - model_.elastic_energy(y);
+    if (measure_energy_) released_.fracture += before - model_.rows_energy(y, rows);
   }
   if (embedded_mesh_) {
     if (changed) embedded_mesh_->crack(bond_breaking_->broken(), bond_breaking_->changed());

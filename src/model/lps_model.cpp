@@ -228,33 +228,45 @@ void LpsModel::update_dilatation(const double* y) {
     compute_dilatation<false>(y);
 }
 
-// ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3 for the bonds of row i, after compute_dilatation.
-double LpsModel::deviatoric_extension(const double* y, int i, int b) const {
+// W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3
+// (notes §3, §6).
+double LpsModel::row_energy(const double* y, int i, double theta) const {
   const double* yi = y + 3 * i;
-  const double* yj = y + 3 * families_.neighbors[b];
-  const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2];
-  const double xi = families_.reference_length[b];
-  const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi;
-  if (!plastic_) return extension - dilatation_[i] * xi / 3.0;
-  return extension - plastic_extension_[b] - (dilatation_[i] - plastic_dilatation_[i]) * xi / 3.0;
+  const double elastic_theta = plastic_ ? theta - plastic_dilatation_[i] : theta;
+  double sum = 0;
+  for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
+    const int j = families_.neighbors[b];
+    const double* yj = y + 3 * j;
+    const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2];
+    const double xi = families_.reference_length[b];
+    const double extension = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - xi;
+    const double deviatoric = plastic_
+                                  ? extension - plastic_extension_[b] - elastic_theta * xi / 3.0
+                                  : extension - elastic_theta * xi / 3.0;
+    sum += bond_omega_[b] * particles_.volume[j] * deviatoric * deviatoric;
+  }
+  return 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * terms_[i].deviatoric * sum;
 }
 
-// W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j (notes §3, §6).
 void LpsModel::energy_density(const double* y, double* w) {
   update_dilatation(y);
   const int n = particles_.count();
-  const auto& off = families_.offsets;
-  const auto& nbr = families_.neighbors;
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double theta = dilatation_[i];
-    double sum = 0;
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double deviatoric = deviatoric_extension(y, i, b);
-      sum += bond_omega_[b] * particles_.volume[nbr[b]] * deviatoric * deviatoric;
-    }
-    w[i] = 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * terms_[i].deviatoric * sum;
+  for (int i = 0; i < n; ++i) w[i] = row_energy(y, i, dilatation_[i]);
+}
+
+// The listed rows' θ_i from the dilatation pass alone (the bits compute_dilatation gives them).
+double LpsModel::rows_energy(const double* y, const std::vector<int>& rows) {
+  const double* V = particles_.volume.data();
+  const std::size_t count = rows.size();
+  double total = 0;
+#pragma omp parallel for reduction(+ : total) schedule(static)
+  for (std::size_t k = 0; k < count; ++k) {
+    const int i = rows[k];
+    const double theta = kernels_.dilatation(bond_row(i), i, y, V, nullptr, nullptr).theta;
+    total += V[i] * row_energy(y, i, theta);
   }
+  return total;
 }
 
 // Return map after a completed step (Eqs 13–16, corrected: notes §5–6). The trial deviatoric

@@ -41,6 +41,7 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void apply_tangent(const double* v, double* out) const override;
   void assemble_scalar_stiffness(SparseSymmetric& L) const override;
   double forces_and_energy(const double* y, double* f) override;
+  double rows_energy(const double* y, const std::vector<int>& rows) override;
 
  private:
   template <bool Plastic>
@@ -62,7 +63,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // h_ij for every directed bond: the majoriser stiffness row i gives bond b (lps_stiffness.cpp);
   // a bond's stiffness is h_ij + h_ji.
   std::vector<double> majoriser_bond_rows() const;
-  double deviatoric_extension(const double* y, int i, int b) const;
+  // W_i at y with row i's dilatation θ_i (energy_density's sum).
+  double row_energy(const double* y, int i, double theta) const;
   double pair_force(int i, std::size_t b, double length) const;
   void set_up_plasticity(const PlasticPoints& plasticity);
 

@@ -12,6 +12,14 @@ double Model::elastic_energy(const double* y) {
   return total;
 }
 
+double Model::rows_energy(const double* y, const std::vector<int>& rows) {
+  std::vector<double> w(particles_.volume.size());
+  energy_density(y, w.data());
+  double total = 0;
+  for (const int i : rows) total += particles_.volume[i] * w[i];
+  return total;
+}
+
 double Model::forces_and_energy(const double* y, double* f) {
   forces(y, f);
   return elastic_energy(y);

@@ -60,6 +60,10 @@ class Model {
   virtual void energy_density(const double* y, double* w) = 0;
   // Total elastic energy Π = Σ V_i W_i.
   double elastic_energy(const double* y);
+  // Σ V_i W_i over the given particles only: what the energy ledger books when bonds break, which
+  // changes only the broken bonds' rows. This one evaluates every W_i; a model whose W_i reads
+  // only row i's bonds evaluates the listed rows alone.
+  virtual double rows_energy(const double* y, const std::vector<int>& rows);
   // Dilatation θ_i of each particle at positions y (N values), the one the forces at y use.
   virtual void dilatation(const double* y, double* theta) const = 0;
   // Gershgorin bound on the stable explicit step at the reference state (notes §4).

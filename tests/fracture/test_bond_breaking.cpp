@@ -320,5 +320,46 @@ TEST(BondBreaking, ForcesStayTheEnergyGradientAfterBreaking) {
   test::expect_force_is_energy_gradient(*model, y);
 }
 
+// What breaking releases, booked from the rows that change alone (the energy ledger,
+// PostStep::run), equals the whole body's energy before less after, for the LPS model and for the
+// paper's (Model's evaluation of every row). An initial crack damages the rows beside it and α
+// raises their thresholds, so at the pull many bonds there exceed the criterion in their
+// partner's row only: a row set without the partners' rows misses their release; one that is
+// the whole body would not be local. Bound: round-off of the whole-body difference, 1e-12 of the
+// body's energy.
+TEST(BondBreaking, ReleaseFromTheChangedRowsEqualsTheWholeBodysDifference) {
+  for (const char* model_name : {"lps", "paper"}) {
+    SCOPED_TRACE(model_name);
+    const Scene scene = test::block_scene(
+        {.size = {0.4, 0.08, 0.08},
+         .resolution = 0.02,
+         .bulk = 2.0e6,
+         .shear = 1.0e6,
+         .model = model_name,
+         .material = ", fracture: {critical_stretch: 0.01, alpha: 20}",
+         .scene = "initial_cracks:\n  - {plane: {point: [0.32, 0, 0], normal: [1, 0, 0]}}\n"});
+    auto model = make_model(scene);
+    BondBreaking breaking(scene, *model);
+    std::vector<double> y = scene.particles.reference;
+    for (int i = 0; i < scene.particles.count(); ++i)
+      if (y[3 * i] > 0.3) y[3 * i] += 0.015 * (y[3 * i] - 0.3);
+    ASSERT_GT(breaking.find(y.data()), 0u);
+    const std::vector<int> rows = breaking.rows_to_change();
+    const double whole_before = model->elastic_energy(y.data());
+    const double rows_before = model->rows_energy(y.data(), rows);
+    ASSERT_GT(breaking.apply(), 0u);
+    EXPECT_EQ(breaking.changed(), rows);
+    for (std::size_t b = 0; b < breaking.broken().size(); ++b)
+      ASSERT_EQ(breaking.broken()[b], breaking.broken()[scene.families.reverse[b]]) << "bond " << b;
+    const double whole = whole_before - model->elastic_energy(y.data());
+    const double local = rows_before - model->rows_energy(y.data(), rows);
+    std::printf("%s: %zu of %d rows change; released %.9e J from them, %.9e J from the body\n",
+                model_name, rows.size(), scene.particles.count(), local, whole);
+    EXPECT_GT(whole, 0.0);
+    EXPECT_NEAR(local, whole, 1e-12 * whole_before);
+    EXPECT_LT(rows.size(), scene.particles.count() / 2u);
+  }
+}
+
 }  // namespace
 }  // namespace fissure
