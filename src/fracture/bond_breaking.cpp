@@ -164,16 +164,8 @@ double BondBreaking::update_drift(const double* y) {
 // far every bond's length may still grow before it reaches its bound, less what the row's
 // particles may already have moved since the last full check (d_i + D: see find()).
 bool BondBreaking::prefilter_row(const double* y, int i, double drift_bound) {
-  const int* off = families_.offsets.data();
-  const int* nbr = families_.neighbors.data();
-  const float* prefilter = prefilter_.data();
-  const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-  double room = std::numeric_limits<double>::infinity();
-  for (int b = off[i]; b < off[i + 1]; ++b) {
-    const double* yj = y + 3 * nbr[b];
-    const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
-    room = std::min(room, prefilter[b] - std::sqrt(d0 * d0 + d1 * d1 + d2 * d2));
-  }
+  const double room = prefilter_room_(families_.offsets[i], families_.offsets[i + 1],
+                                      families_.neighbors.data(), prefilter_.data(), y, i);
   slack_[i] = room - drift_bound;
   return room < 0;  // some bond past its bound
 }

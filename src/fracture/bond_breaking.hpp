@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fracture/prefilter_room.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -61,6 +62,7 @@ class BondBreaking {
   // exactly only where some bond passes it. +∞ for broken bonds and rows that never break;
   // empty with plasticity.
   std::vector<float> prefilter_;
+  PrefilterRoom prefilter_room_ = fissure::prefilter_room();  // the row pass this CPU runs
   // Where rows stand against the prefilter (elastic scenes): the positions of the last full
   // check, each row's slack left at its last check, each particle's drift since (find()).
   std::vector<double> snapshot_, slack_, drift_;
