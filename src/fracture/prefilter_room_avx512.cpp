@@ -1,4 +1,5 @@
-// prefilter_room.hpp with AVX-512: eight bonds per iteration, the neighbours' positions gathered.
+// prefilter_room.hpp with AVX-512: eight bonds per iteration, the neighbours' positions gathered,
+// the bond arrays prefetched ahead as the LPS row passes do (lps_rows_avx512.cpp).
 #include "fracture/prefilter_room.hpp"
 
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
@@ -16,6 +17,8 @@ double room_avx512(int begin, int end, const int* neighbor, const float* bound, 
                 x2 = _mm512_set1_pd(y[3 * i + 2]), zero = _mm512_setzero_pd();
   __m512d room = _mm512_set1_pd(std::numeric_limits<double>::infinity());
   for (int b = begin; b < end; b += 8) {
+    _mm_prefetch(reinterpret_cast<const char*>(neighbor + b + 256), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(bound + b + 256), _MM_HINT_T0);
     const int left = end - b;
     const __mmask8 m = left >= 8 ? __mmask8(0xff) : __mmask8((1u << left) - 1);
     const __m256i j = _mm256_maskz_loadu_epi32(m, neighbor + b);
