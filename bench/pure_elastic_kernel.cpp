@@ -12,8 +12,7 @@ PureElasticKernel::PureElasticKernel(const Scene& scene) : families_(scene.famil
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
-  std::vector<double> omega(families_.directed_bonds());
-  omega_.resize(omega.size());
+  omega_.resize(families_.directed_bonds());
   weighted_volume_.resize(n);
   bulk_modulus_.resize(n);
   volume_ = p.volume;
@@ -23,20 +22,16 @@ PureElasticKernel::PureElasticKernel(const Scene& scene) : families_(scene.famil
     double m = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       omega_[b] = static_cast<float>(scene.horizon_of_body[p.body[i]] / xi[b]);
-      omega[b] = omega_[b];
-      m += omega[b] * xi[b] * xi[b] * p.volume[nbr[b]];
+      m += double(omega_[b]) * xi[b] * xi[b] * p.volume[nbr[b]];
     }
     weighted_volume_[i] = m;
     bulk_modulus_[i] = material.bulk_modulus;
     terms_[i] = {0.0, m > 0 ? 15.0 * material.shear_modulus / m : 0.0, 0.0, p.volume[i]};
   }
-  const std::vector<double> c = dilatation_weights(p, families_, omega, weighted_volume_);
-  weight_.resize(c.size());
-  reverse_weight_.resize(c.size());
-  for (std::size_t b = 0; b < c.size(); ++b) {
-    weight_[b] = static_cast<float>(c[b]);
-    reverse_weight_[b] = static_cast<float>(c[families_.reverse[b]]);
-  }
+  weight_ = dilatation_weights(p, families_, omega_, weighted_volume_);
+  reverse_weight_.resize(weight_.size());
+  for (std::size_t b = 0; b < weight_.size(); ++b)
+    reverse_weight_[b] = weight_[families_.reverse[b]];
 }
 
 // D_i and S_i from θ_i and Σ_j ω e |ξ| V_j (LpsModel::set_terms, elastic).

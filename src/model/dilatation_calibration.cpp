@@ -18,13 +18,13 @@ Vector6 strain_projection(const double u[3]) {
 
 }  // namespace
 
-std::vector<double> dilatation_weights(const Particles& particles, const Families& families,
-                                       const std::vector<double>& omega,
-                                       const std::vector<double>& weighted_volume) {
+std::vector<float> dilatation_weights(const Particles& particles, const Families& families,
+                                      const std::vector<float>& omega,
+                                      const std::vector<double>& weighted_volume) {
   const int n = particles.count();
   const auto& x = particles.reference;
   const auto& V = particles.volume;
-  std::vector<double> weights(families.directed_bonds());
+  std::vector<float> weights(families.directed_bonds());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const int begin = families.offsets[i], end = families.offsets[i + 1];
@@ -39,7 +39,7 @@ std::vector<double> dilatation_weights(const Particles& particles, const Familie
       direction(b, u);
       const Vector6 phi = strain_projection(u);
       const double xi = families.reference_length[b];
-      moment += omega[b] * xi * xi * V[families.neighbors[b]] * phi * phi.transpose();
+      moment += double(omega[b]) * xi * xi * V[families.neighbors[b]] * phi * phi.transpose();
     }
     Vector6 trace;
     trace << 1, 1, 1, 0, 0, 0;
@@ -54,13 +54,14 @@ std::vector<double> dilatation_weights(const Particles& particles, const Familie
     for (int b = begin; b < end; ++b) {
       const double xi = families.reference_length[b];
       if (!determined) {
-        weights[b] = weighted_volume[i] > 0 ? 3.0 * omega[b] * xi / weighted_volume[i] : 0.0;
+        weights[b] = static_cast<float>(
+            weighted_volume[i] > 0 ? 3.0 * omega[b] * xi / weighted_volume[i] : 0.0);
         continue;
       }
       double u[3];
       direction(b, u);
       // ξ̂ᵀ K ξ̂ = φ·K with the off-diagonal entries of φ doubled, as K12 appears twice.
-      weights[b] = omega[b] * xi * strain_projection(u).dot(K);
+      weights[b] = static_cast<float>(omega[b] * xi * strain_projection(u).dot(K));
     }
   }
   return weights;

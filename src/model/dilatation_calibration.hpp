@@ -15,10 +15,11 @@
 
 namespace fissure {
 
-// c_ij per bond (CSR order). Falls back to 3ω|ξ|/m_i for a family too small or too flat to
+// c_ij per bond (CSR order), rounded to single precision as the model keeps them, from the
+// model's single-precision ω. Falls back to 3ω|ξ|/m_i for a family too small or too flat to
 // determine K_i.
-std::vector<double> dilatation_weights(const Particles& particles, const Families& families,
-                                       const std::vector<double>& omega,
-                                       const std::vector<double>& weighted_volume);
+std::vector<float> dilatation_weights(const Particles& particles, const Families& families,
+                                      const std::vector<float>& omega,
+                                      const std::vector<double>& weighted_volume);
 
 }  // namespace fissure

@@ -18,7 +18,6 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   const auto& nbr = families.neighbors;
   const auto& xi = families.reference_length;
   const std::size_t bonds = families.directed_bonds();
-  std::vector<double> omega(bonds);
   bond_omega_.resize(bonds);
   weighted_volume_.resize(n);
   terms_.resize(n);
@@ -30,30 +29,27 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
       const auto xi_vector = reference_vector(particles, i, nbr[b]);
       bond_omega_[b] =
           static_cast<float>(influence(materials_, i, xi_vector.data(), xi[b]));  // Eq 5, 17
-      omega[b] = bond_omega_[b];
-      m += omega[b] * xi[b] * xi[b] * particles.volume[nbr[b]];  // m_i = Σ ω|ξ|²V_j (notes §6)
+      m += double(bond_omega_[b]) * xi[b] * xi[b] *
+           particles.volume[nbr[b]];  // m_i = Σ ω|ξ|²V_j (notes §6)
     }
     weighted_volume_[i] = m;
     // B_i = 15μ_i/m_i, with m_i of the whole family: breaking bonds does not change it.
     terms_[i] = {0.0, m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0, 0.0,
                  particles.volume[i]};
   }
-  std::vector<double> c(bonds);
   if (surface_correction) {
-    c = dilatation_weights(particles, families, omega, weighted_volume_);
+    bond_weight_ = dilatation_weights(particles, families, bond_omega_, weighted_volume_);
   } else {
+    bond_weight_.resize(bonds);
     for (int i = 0; i < n; ++i)
       for (int b = off[i]; b < off[i + 1]; ++b)
-        c[b] = weighted_volume_[i] > 0 ? 3.0 * omega[b] * xi[b] / weighted_volume_[i] : 0.0;
+        bond_weight_[b] = static_cast<float>(
+            weighted_volume_[i] > 0 ? 3.0 * bond_omega_[b] * xi[b] / weighted_volume_[i] : 0.0);
   }
-  bond_weight_.resize(bonds);
   bond_reverse_weight_.resize(bonds);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i)
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      bond_weight_[b] = static_cast<float>(c[b]);
-      bond_reverse_weight_[b] = static_cast<float>(c[families.reverse[b]]);
-    }
+  for (std::size_t b = 0; b < bonds; ++b)
+    bond_reverse_weight_[b] = bond_weight_[families.reverse[b]];
   if (plastic_) set_up_plasticity(*plasticity);
 }
 

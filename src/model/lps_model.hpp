@@ -6,6 +6,7 @@
 //   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j,
 // with the plastic extensions e^p (§4.2) held fixed between steps.
 #include <cstdint>
+#include <utility>
 
 #include "model/lps_rows.hpp"
 #include "model/model_registry.hpp"
@@ -60,9 +61,15 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void plastic_force_row(const lps::BondRow& row, int i, const double* y, double elastic_theta,
                          double force[3], double* squares) const;
   void update_dilatation(const double* y);
-  // h_ij for every directed bond: the majoriser stiffness row i gives bond b (lps_stiffness.cpp);
-  // a bond's stiffness is h_ij + h_ji.
-  std::vector<double> majoriser_bond_rows() const;
+  // The majoriser stiffness h_ij row i gives bond b (lps_stiffness.cpp), a bond's stiffness being
+  // h_ij + h_ji: from row i's factors a_i Σ|c̄| and q_i Σ|r| (majoriser_rows(), per particle, so
+  // that no per-bond array is needed) and the bond's c̄_ij and r_ij (majoriser_weights()).
+  struct MajoriserRow {
+    double a_sum_c, q_sum_r;
+  };
+  std::vector<MajoriserRow> majoriser_rows() const;
+  std::pair<double, double> majoriser_weights(int i, int b) const;
+  double majoriser_bond_row(const std::vector<MajoriserRow>& rows, int i, int b) const;
   // W_i at y with row i's dilatation θ_i (energy_density's sum).
   double row_energy(const double* y, int i, double theta) const;
   double pair_force(int i, std::size_t b, double length) const;

@@ -62,24 +62,16 @@ double LpsModel::pair_force(int i, std::size_t b, double length) const {
 // for every directed bond: a bond's stiffness is h_ij + h_ji. A broken bond (ω = c = 0) has
 // c̄ = r = 0, so h = 0; it is set so explicitly, so that no 0·∞ of a degenerate family can give it
 // a stiffness.
-std::vector<double> LpsModel::majoriser_bond_rows() const {
+std::vector<LpsModel::MajoriserRow> LpsModel::majoriser_rows() const {
   const int n = particles_.count();
   const auto& off = families_.offsets;
-  const auto& nbr = families_.neighbors;
-  const auto& xi = families_.reference_length;
-  const auto& V = particles_.volume;
-  std::vector<double> h(families_.directed_bonds());
+  std::vector<MajoriserRow> rows(n);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double m = weighted_volume_[i], B = terms_[i].deviatoric;
-    // c̄_ij and r_ij = c̄_ij − 3 ω_ij |ξ_ij| V_j / m_i
-    auto weights = [&](int b) {
-      const double c = bond_weight_[b] * V[nbr[b]];
-      return std::pair{c, m > 0 ? c - 3.0 * bond_omega_[b] * xi[b] * V[nbr[b]] / m : 0.0};
-    };
     double sum_c = 0, sum_r = 0, norm_c = 0, norm_r = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const auto [c, r] = weights(b);
+      const auto [c, r] = majoriser_weights(i, b);
       sum_c += std::abs(c);
       sum_r += std::abs(r);
       norm_c += c * c;
@@ -88,21 +80,31 @@ std::vector<double> LpsModel::majoriser_bond_rows() const {
     const double eps = norm_c > 0 ? std::min(1.0, std::sqrt(norm_r / norm_c)) : 1.0;
     const double a = std::max(0.0, materials_.bulk_modulus[i] - (1.0 - eps) * B * m / 9.0);
     const double q = eps > 0 ? B * m / (9.0 * eps) : 0.0;
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const auto [c, r] = weights(b);
-      h[b] = bond_omega_[b] == 0 ? 0.0
-                                 : V[i] * (B * bond_omega_[b] * V[nbr[b]] +
-                                           a * sum_c * std::abs(c) + q * sum_r * std::abs(r));
-    }
+    rows[i] = {a * sum_c, q * sum_r};
   }
-  return h;
+  return rows;
+}
+
+// c̄_ij and r_ij = c̄_ij − 3 ω_ij |ξ_ij| V_j / m_i
+std::pair<double, double> LpsModel::majoriser_weights(int i, int b) const {
+  const double Vj = particles_.volume[families_.neighbors[b]], m = weighted_volume_[i];
+  const double c = bond_weight_[b] * Vj;
+  return {c, m > 0 ? c - 3.0 * bond_omega_[b] * families_.reference_length[b] * Vj / m : 0.0};
+}
+
+double LpsModel::majoriser_bond_row(const std::vector<MajoriserRow>& rows, int i, int b) const {
+  if (bond_omega_[b] == 0) return 0.0;
+  const auto [c, r] = majoriser_weights(i, b);
+  const auto& V = particles_.volume;
+  return V[i] * (terms_[i].deviatoric * bond_omega_[b] * V[families_.neighbors[b]] +
+                 rows[i].a_sum_c * std::abs(c) + rows[i].q_sum_r * std::abs(r));
 }
 
 // L(i, j) = −k_ij, L(i, i) = Σ_j k_ij with k_ij = (h_ij + h_ji)/3: the majoriser at rest, whose
 // bond puts ±3k_ij n nᵀ in its blocks, with n nᵀ replaced by I₃/3 (the same trace), so that
 // 3 tr L = tr K^bw. k is symmetric in the pair, so L is; a broken bond has h = 0 both ways.
 void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
-  const std::vector<double> h = majoriser_bond_rows();
+  const std::vector<MajoriserRow> rows = majoriser_rows();
   const auto& off = families_.offsets;
   const auto& rev = families_.reverse;
 #pragma omp parallel for schedule(static)
@@ -112,7 +114,9 @@ void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
     const int first = L.offsets[i], self = self_position(families_, i);
     double diagonal = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double k = (h[b] + h[rev[b]]) / 3.0;
+      const double k = (majoriser_bond_row(rows, i, b) +
+                        majoriser_bond_row(rows, families_.neighbors[b], rev[b])) /
+                       3.0;
       const int k_index = b - off[i];
       L.values[first + k_index + (k_index >= self ? 1 : 0)] = -k;
       diagonal += k;
@@ -128,7 +132,7 @@ void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
 // w_ij = 1/m_i + 1/√(m_i m_j). K ⪯ K^bw makes it a bound for the exact tangent too; symplectic
 // Euler and Verlet are stable for dt < 2/√λ_max (notes §4).
 double LpsModel::stable_time_step() const {
-  const std::vector<double> h = majoriser_bond_rows();
+  const std::vector<MajoriserRow> rows = majoriser_rows();
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& x = particles_.reference;
@@ -144,7 +148,8 @@ double LpsModel::stable_time_step() const {
                            std::abs(x[3 * j + 1] - x[3 * i + 1]) / xi,
                            std::abs(x[3 * j + 2] - x[3 * i + 2]) / xi};
       const double k =
-          (h[b] + h[families_.reverse[b]]) * (1.0 / mass[i] + 1.0 / std::sqrt(mass[i] * mass[j]));
+          (majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, j, families_.reverse[b])) *
+          (1.0 / mass[i] + 1.0 / std::sqrt(mass[i] * mass[j]));
       block += k;
       for (int d = 0; d < 3; ++d) row[d] += k * n[d] * (n[0] + n[1] + n[2]);
     }
@@ -161,7 +166,7 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
-  const std::vector<double> h = majoriser_bond_rows();
+  const std::vector<MajoriserRow> rows = majoriser_rows();
   std::fill(K.values.begin(), K.values.end(), 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -169,7 +174,8 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
       const auto g = bond_geometry(y, particles_, i, j, xi[b]);
-      const double k = h[b] + h[families_.reverse[b]];
+      const double k =
+          majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, j, families_.reverse[b]);
       const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
       const int k_index = b - off[i];
       scatter_bond(K, i, self, k_index + (k_index >= self ? 1 : 0), g.n, k,
