@@ -1,4 +1,5 @@
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,47 +47,54 @@ Families build_families(const Particles& particles, const std::vector<double>& h
   KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
 
-  std::vector<std::vector<int>> rows(n);
+  // Each thread searches one contiguous block of rows (schedule(static) hands out blocks in
+  // thread order) into one flat buffer, so the rows join in CSR order. Flat buffers instead of a
+  // vector per row: those small blocks, once freed, would stay resident for the whole run.
+  std::vector<int> row_size(n);
+  std::vector<std::vector<int>> block(omp_get_max_threads());
 #pragma omp parallel
   {
     std::vector<std::pair<std::uint32_t, double>> matches;
-#pragma omp for schedule(dynamic, 256)
+    std::vector<int>& mine = block[omp_get_thread_num()];
+#pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
       const int body = particles.body[i];
       const double delta = horizon_of_body[body];
       matches.clear();
       tree.radiusSearch(&particles.reference[3 * i], delta * delta, matches,
                         nanoflann::SearchParams(32, 0, false));
-      auto& row = rows[i];
+      const std::size_t start = mine.size();
       for (const auto& match : matches) {
         const int j = static_cast<int>(match.first);
-        if (j != i && particles.body[j] == body) row.push_back(j);
+        if (j != i && particles.body[j] == body) mine.push_back(j);
       }
-      std::sort(row.begin(), row.end());
+      std::sort(mine.begin() + static_cast<std::ptrdiff_t>(start), mine.end());
+      row_size[i] = static_cast<int>(mine.size() - start);
     }
   }
 
   long long total = 0;
-  for (const auto& row : rows) total += static_cast<long long>(row.size());
+  for (const int size : row_size) total += size;
   if (total > std::numeric_limits<int>::max())
     throw std::length_error(fmt::format(
         "{} bonds exceed the 2^31 this build indexes; coarsen resolution or lower horizon", total));
   Families f;
   f.offsets.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) f.offsets[i + 1] = f.offsets[i] + static_cast<int>(rows[i].size());
-  f.neighbors.resize(f.offsets[n]);
+  for (int i = 0; i < n; ++i) f.offsets[i + 1] = f.offsets[i] + row_size[i];
+  f.neighbors.reserve(f.offsets[n]);
+  for (std::vector<int>& rows : block) {
+    f.neighbors.insert(f.neighbors.end(), rows.begin(), rows.end());
+    std::vector<int>().swap(rows);
+  }
   f.reference_length.resize(f.offsets[n]);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    int k = f.offsets[i];
     const double* xi = &particles.reference[3 * i];
-    for (int j : rows[i]) {
-      const double* xj = &particles.reference[3 * j];
-      f.neighbors[k] = j;
-      f.reference_length[k] =
+    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+      const double* xj = &particles.reference[3 * f.neighbors[b]];
+      f.reference_length[b] =
           std::sqrt((xj[0] - xi[0]) * (xj[0] - xi[0]) + (xj[1] - xi[1]) * (xj[1] - xi[1]) +
                     (xj[2] - xi[2]) * (xj[2] - xi[2]));
-      ++k;
     }
   }
   f.reverse.resize(f.offsets[n]);
