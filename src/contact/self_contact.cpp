@@ -150,6 +150,26 @@ void SelfContact::build_list(const double* y) {
   }
   built_at_.assign(y, y + 3 * radius_.size());
   ++builds_;
+  split_rows();
+}
+
+void SelfContact::split_rows() {
+  const int n = static_cast<int>(radius_.size());
+  touching_end_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    // Moving each touching candidate forward in turn keeps their order; sorting again restores
+    // increasing j where an earlier split had moved a now broken bond's pair behind.
+    Candidate* row = candidates_.data() + list_start_[i];
+    const int count = list_start_[i + 1] - list_start_[i];
+    int touching = 0;
+    for (int s = 0; s < count; ++s)
+      if (row[s].bond < 0 || !model_.bond_intact(row[s].bond)) std::swap(row[touching++], row[s]);
+    std::sort(row, row + touching,
+              [](const Candidate& a, const Candidate& b) { return a.j < b.j; });
+    touching_end_[i] = list_start_[i] + touching;
+  }
+  split_revision_ = model_.revision();
 }
 
 void SelfContact::add_forces(const double* y, double* f) {
@@ -187,21 +207,21 @@ void SelfContact::add_forces(const double* y, double* f) {
   if (!finite) return;
   double half_diagonal = 0;  // squared
   for (int k = 0; k < 3; ++k) half_diagonal += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
-  if (!have_list || std::min(moved, half_diagonal) > 0.25 * skin_ * skin_) build_list(y);
+  if (!have_list || std::min(moved, half_diagonal) > 0.25 * skin_ * skin_)
+    build_list(y);
+  else if (model_.revision() != split_revision_)
+    split_rows();
 
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double force[3] = {0, 0, 0};
-    for (int s = list_start_[i]; s < list_start_[i + 1]; ++s) {
+    for (int s = list_start_[i]; s < touching_end_[i]; ++s) {
       const int j = candidates_[s].j;
       double d[3];
       for (int k = 0; k < 3; ++k) d[k] = y[3 * i + k] - y[3 * j + k];
       const double distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       const double reach = radius_[i] + radius_[j];
       if (distance >= reach || distance == 0) continue;
-      // Bonded pairs interact through the model only.
-      const int b = candidates_[s].bond;
-      if (b >= 0 && model_.bond_intact(b)) continue;
       const double push = 0.5 * (stiffness_[i] + stiffness_[j]) * (reach - distance);
       for (int k = 0; k < 3; ++k) force[k] += push * d[k] / distance;
     }

@@ -8,9 +8,12 @@
 // CSR form with the index of the bond to j in i's family row (−1 if none). The list is rebuilt
 // only once the particles have moved more than skin/2 since the last build, not counting what
 // they moved together (add_forces): a pair left out was at least r_i + r_j + skin apart then
-// and so is still at least r_i + r_j apart, out of reach. Whether a bond is intact is looked up
-// at each evaluation (model.bond_intact), so a bond that breaks between builds turns its pair
-// into a contact pair at once, with no rebuild.
+// and so is still at least r_i + r_j apart, out of reach. Bonded pairs interact through the
+// model only, so each row's candidates are split into those that can touch (no bond, or a broken
+// one) first, in increasing j, and the pairs of intact bonds after them; evaluations walk the
+// first part alone. The split is redone whenever the model's revision changed (a bond broke,
+// plastic flow, a restore), so a bond that breaks between builds turns its pair into a contact
+// pair at once, with no rebuild.
 //
 // The forces are those of the former search of the 27 cells at every evaluation to round-off:
 // each particle's sum now runs over its partners in increasing j instead of in cell order, which
@@ -39,6 +42,7 @@ class SelfContact {
  private:
   void build_grid(const double* y);
   void build_list(const double* y);
+  void split_rows();
 
   const Families& families_;
   const Model& model_;
@@ -58,6 +62,10 @@ class SelfContact {
   };
   std::vector<int> list_start_;
   std::vector<Candidate> candidates_;
+  // Row i's candidates that can touch are [list_start_[i], touching_end_[i]), in increasing j;
+  // split at the model's revision split_revision_.
+  std::vector<int> touching_end_;
+  std::size_t split_revision_ = 0;
   std::vector<double> built_at_;  // 3N positions at the last build (empty before the first)
   std::size_t builds_ = 0;
 };
