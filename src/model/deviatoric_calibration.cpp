@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/model.hpp"
+
 namespace fissure {
 
 namespace {
@@ -202,7 +204,6 @@ DeviatoricCalibration deviatoric_weights(const Particles& particles, const Famil
                                          const std::vector<double>& weighted_volume,
                                          const std::vector<DeviatoricShape>& shape_of_body) {
   const int n = particles.count();
-  const auto& x = particles.reference;
   const auto& V = particles.volume;
   // Per body: t = the upper triangle of T/2μ, and L⁻¹ for the residual.
   std::vector<Vector15> target(shape_of_body.size());
@@ -240,8 +241,8 @@ DeviatoricCalibration deviatoric_weights(const Particles& particles, const Famil
       for (int j = 0; j < bonds; ++j) {
         const int b = begin + j, k = families.neighbors[b];
         const double xi = families.reference_length[b];
-        double u[3];
-        for (int c = 0; c < 3; ++c) u[c] = (x[3 * k + c] - x[3 * i + c]) / xi;
+        const auto xi_vector = reference_vector(particles, i, k);
+        const double u[3] = {xi_vector[0] / xi, xi_vector[1] / xi, xi_vector[2] / xi};
         const Vector5 a = deviatoric_coordinates(u);
         for (int e = 0; e < 15; ++e) r.s[15 * j + e] = a(kUpperColumn[e]) * a(kUpperRow[e]);
         r.length_volume[j] = xi * xi * V[k];
