@@ -98,7 +98,7 @@ Matrix15 gram_matrix(const Columns15& U, double shift) {
 
 // Per-thread scratch for one row of N bonds: s_j (15 per bond), the weights w_j = ω B_i|ξ|²V_j
 // /(2μ_i), z_j = s_jᵀλ, the Newton direction's d_j = s_jᵀΔλ, w_j ρ_j, √w_j s_j on the bonds
-// inside their bounds, |ξ|²V_j and fl(ω B_i) (ρ ≡ 1).
+// inside their bounds, |ξ|²V_j and ω (ρ ≡ 1).
 struct RowScratch {
   std::vector<double> s, w, z, d, weighted, scaled, length_volume;
   std::vector<float> plain;
@@ -176,13 +176,13 @@ bool solve_row(int bonds, const Vector15& t, const Matrix15& gram, RowScratch& r
 }
 
 // max |eig(L⁻¹ (A/2μ) L⁻ᵀ) − 1| with T/2μ = L Lᵀ: the largest relative error of the deviatoric
-// energy ½xᵀAx against ½xᵀTx over all x, from the rounded weights (A_i = Σ_j g|ξ|²V_j a_j a_jᵀ).
-// Infinite if the eigenvalues cannot be computed.
-double row_residual(const float* g, int bonds, double two_mu, const Matrix5& inverse_factor,
-                    RowScratch& r) {
+// energy ½xᵀAx against ½xᵀTx over all x, from the rounded weights w (A_i = Σ_j g|ξ|²V_j a_j a_jᵀ,
+// g = B_i w). Infinite if the eigenvalues cannot be computed.
+double row_residual(const float* w, double B, int bonds, double two_mu,
+                    const Matrix5& inverse_factor, RowScratch& r) {
   const Columns15 S(r.s.data(), 15, bonds);
   Column weighted(r.weighted.data(), bonds);
-  for (int j = 0; j < bonds; ++j) weighted(j) = double(g[j]) * r.length_volume[j] / two_mu;
+  for (int j = 0; j < bonds; ++j) weighted(j) = B * double(w[j]) * r.length_volume[j] / two_mu;
   const Matrix5 A = from_upper_triangle(S * weighted);
   const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(inverse_factor * A *
                                                      inverse_factor.transpose());
@@ -195,6 +195,50 @@ double row_residual(const float* g, int bonds, double two_mu, const Matrix5& inv
 DeviatoricShape isotropic_deviatoric_shape() {
   DeviatoricShape shape{};
   for (int k = 0; k < 5; ++k) shape[6 * k] = 1;
+  return shape;
+}
+
+// T/2μ = (15/2) ⟨ω̂ a aᵀ⟩ / ⟨ω̂⟩ over the unit sphere with ω̂ = 1/|G ξ̂|: the continuum limit of
+// A_i/2μ = (B_i/2μ) Σ_j ω|ξ|²V_j a aᵀ with ω = δ/|Gξ| (Eq 17), B_i = 15μ/m_i, whose radial
+// integrals cancel (I₅ for G = I, as ⟨a aᵀ⟩ = 2/15 I₅). Gauss–Legendre in cos θ times the
+// trapezoid rule in φ integrates spherical polynomials of degree < 2·64 exactly, so the smooth ω̂
+// of an invertible G to round-off.
+DeviatoricShape anisotropic_deviatoric_shape(const std::array<double, 9>& G) {
+  constexpr int kPolar = 64, kAzimuthal = 128;
+  Matrix5 sum = Matrix5::Zero();
+  double weight_sum = 0;
+  for (int k = 0; k < kPolar; ++k) {
+    // the k-th root of the Legendre polynomial P_64 by Newton's method, and its weight
+    double z = std::cos(std::numbers::pi * (k + 0.75) / (kPolar + 0.5)), derivative = 0;
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      double p0 = 1, p1 = z;
+      for (int l = 2; l <= kPolar; ++l) {
+        const double p2 = ((2 * l - 1) * z * p1 - (l - 1) * p0) / l;
+        p0 = p1;
+        p1 = p2;
+      }
+      derivative = kPolar * (z * p1 - p0) / (z * z - 1);
+      const double step = p1 / derivative;
+      z -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    const double polar_weight = 2 / ((1 - z * z) * derivative * derivative);
+    const double r = std::sqrt(1 - z * z);
+    for (int m = 0; m < kAzimuthal; ++m) {
+      const double phi = 2 * std::numbers::pi * m / kAzimuthal;
+      const double u[3] = {r * std::cos(phi), r * std::sin(phi), z};
+      double g[3];
+      for (int row = 0; row < 3; ++row)
+        g[row] = G[3 * row] * u[0] + G[3 * row + 1] * u[1] + G[3 * row + 2] * u[2];
+      const double omega = polar_weight / std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      const Vector5 a = deviatoric_coordinates(u);
+      sum += omega * a * a.transpose();
+      weight_sum += omega;
+    }
+  }
+  DeviatoricShape shape;
+  for (int k = 0; k < 5; ++k)
+    for (int l = 0; l < 5; ++l) shape[5 * k + l] = 7.5 * 0.5 * (sum(k, l) + sum(l, k)) / weight_sum;
   return shape;
 }
 
@@ -247,11 +291,11 @@ DeviatoricCalibration deviatoric_weights(const Particles& particles, const Famil
         for (int e = 0; e < 15; ++e) r.s[15 * j + e] = a(kUpperColumn[e]) * a(kUpperRow[e]);
         r.length_volume[j] = xi * xi * V[k];
         r.w[j] = double(omega[b]) * B * r.length_volume[j] / two_mu;
-        r.plain[j] = static_cast<float>(double(omega[b]) * B);
+        r.plain[j] = omega[b];
       }
-      float* g = result.weights.data() + begin;
+      float* w = result.weights.data() + begin;
       const double plain_residual =
-          row_residual(r.plain.data(), bonds, two_mu, inverse_factor[body], r);
+          row_residual(r.plain.data(), B, bonds, two_mu, inverse_factor[body], r);
       DeviatoricRow outcome = DeviatoricRow::too_few_bonds;
       double residual = plain_residual;
       if (bonds >= 15 && B > 0) {
@@ -270,14 +314,14 @@ DeviatoricCalibration deviatoric_weights(const Particles& particles, const Famil
                 kSmallestReciprocalCondition * pivots.vectorD().maxCoeff() &&
             solve_row(bonds, target[body], gram, r)) {
           for (int j = 0; j < bonds; ++j)
-            g[j] = static_cast<float>(factor(r.z[j]) * double(omega[begin + j]) * B);
-          residual = row_residual(g, bonds, two_mu, inverse_factor[body], r);
+            w[j] = static_cast<float>(factor(r.z[j]) * double(omega[begin + j]));  // ρ_ij ω_ij
+          residual = row_residual(w, B, bonds, two_mu, inverse_factor[body], r);
           outcome =
               residual <= plain_residual ? DeviatoricRow::calibrated : DeviatoricRow::not_better;
         }
       }
       if (outcome != DeviatoricRow::calibrated) {
-        std::copy(r.plain.begin(), r.plain.begin() + bonds, g);
+        std::copy(r.plain.begin(), r.plain.begin() + bonds, w);
         residual = plain_residual;
       }
       result.residual[i] = residual;

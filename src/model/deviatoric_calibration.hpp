@@ -1,6 +1,7 @@
 #pragma once
 // Calibrated deviatoric weights (issue 15; a deviation from the paper, like the calibrated
-// dilatation of dilatation_calibration.hpp). Not yet used by the model's kernels.
+// dilatation of dilatation_calibration.hpp), used by the LPS model with
+// material.surface_correction: full (docs/model.md).
 //
 // With θ exact, a small homogeneous strain ε gives ê_ij = |ξ| a_jᵀx, x_k = D_k:ε, where a_j ∈ R⁵
 // holds the coordinates of dev(ξ̂ξ̂ᵀ) in an orthonormal basis D_1..D_5 of the deviatoric tensors
@@ -40,14 +41,18 @@ constexpr double kExactDeviatoricResidual = 1e-6;
 // row major. I₅ for an isotropic body; an anisotropic one (Eq 17) may pass its own average.
 using DeviatoricShape = std::array<double, 25>;
 DeviatoricShape isotropic_deviatoric_shape();
+// The target of an anisotropic body whose influence function is ω = δ/|Gξ| (Eq 17, G row major):
+// the continuum limit of its uncalibrated A_i/2μ_i, so that calibrated surface particles answer
+// as the body's inside does.
+DeviatoricShape anisotropic_deviatoric_shape(const std::array<double, 9>& G);
 
-// What a row got: calibrated weights, or ρ ≡ 1 (g_ij = ω_ij B_i) because its family has fewer
+// What a row got: calibrated weights, or ρ ≡ 1 (w_ij = ω_ij) because its family has fewer
 // than 15 bonds, its Gram matrix Σ_j s_j s_jᵀ (weighted) is singular (or a Newton matrix could
 // not be factorised), or the calibrated weights would leave a larger residual than ρ ≡ 1.
 enum class DeviatoricRow : std::uint8_t { calibrated, too_few_bonds, singular, not_better };
 
 struct DeviatoricCalibration {
-  std::vector<float> weights;       // g_ij per bond (CSR order), single precision
+  std::vector<float> weights;       // w_ij = ρ_ij ω_ij per bond (CSR order): g_ij = B_i w_ij
   std::vector<double> residual;     // per particle: max |eig(T_i^-½ A_i T_i^-½) − 1|
   std::vector<DeviatoricRow> rows;  // per particle
   int exact_rows = 0;               // residual ≤ kExactDeviatoricResidual
@@ -55,11 +60,11 @@ struct DeviatoricCalibration {
   double largest_residual = 0;
 };
 
-// g_ij for every bond from the model's single-precision ω, with B_i = 15μ_i/m_i (0 where
-// m_i = 0) and the target T_i = 2μ_i shape_of_body[particles.body[i]] (μ_i > 0). The residual
+// w_ij = fl(ρ_ij ω_ij) for every bond from the model's single-precision ω, with B_i = 15μ_i/m_i (0
+// where m_i = 0) and the target T_i = 2μ_i shape_of_body[particles.body[i]] (μ_i > 0). The residual
 // is the largest relative error of the deviatoric energy over all small homogeneous strains,
-// computed from the rounded g. Throws std::invalid_argument if a body has no shape or its shape
-// is not symmetric positive definite.
+// computed from the rounded w (g = B_i w). Throws std::invalid_argument if a body has no shape or
+// its shape is not symmetric positive definite.
 DeviatoricCalibration deviatoric_weights(const Particles& particles, const Families& families,
                                          const std::vector<float>& omega,
                                          const std::vector<double>& shear_modulus,

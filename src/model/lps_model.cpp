@@ -5,20 +5,21 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
 #include "scene/scene.hpp"
 
 namespace fissure {
 
 LpsModel::LpsModel(const Particles& particles, const Families& families, MaterialPoints materials,
-                   bool surface_correction, const PlasticPoints* plasticity)
+                   SurfaceCorrection surface_correction, const PlasticPoints* plasticity)
     : Model(particles, families, std::move(materials)), plastic_(plasticity != nullptr) {
   const int n = particles.count();
   const auto& off = families.offsets;
   const auto& nbr = families.neighbors;
   const auto& xi = families.reference_length;
   const std::size_t bonds = families.directed_bonds();
-  bond_omega_.resize(bonds);
+  bond_deviatoric_.resize(bonds);
   weighted_volume_.resize(n);
   terms_.resize(n);
   dilatation_.assign(n, 0.0);
@@ -27,9 +28,9 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
     double m = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const auto xi_vector = reference_vector(particles, i, nbr[b]);
-      bond_omega_[b] =
+      bond_deviatoric_[b] =
           static_cast<float>(influence(materials_, i, xi_vector.data(), xi[b]));  // Eq 5, 17
-      m += double(bond_omega_[b]) * xi[b] * xi[b] *
+      m += double(bond_deviatoric_[b]) * xi[b] * xi[b] *
            particles.volume[nbr[b]];  // m_i = Σ ω|ξ|²V_j (notes §6)
     }
     weighted_volume_[i] = m;
@@ -37,20 +38,57 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
     terms_[i] = {0.0, m > 0 ? 15.0 * materials_.shear_modulus[i] / m : 0.0, 0.0,
                  particles.volume[i]};
   }
-  if (surface_correction) {
-    bond_weight_ = dilatation_weights(particles, families, bond_omega_, weighted_volume_);
+  if (surface_correction != SurfaceCorrection::none) {
+    bond_weight_ = dilatation_weights(particles, families, bond_deviatoric_, weighted_volume_);
   } else {
     bond_weight_.resize(bonds);
     for (int i = 0; i < n; ++i)
       for (int b = off[i]; b < off[i + 1]; ++b)
         bond_weight_[b] = static_cast<float>(
-            weighted_volume_[i] > 0 ? 3.0 * bond_omega_[b] * xi[b] / weighted_volume_[i] : 0.0);
+            weighted_volume_[i] > 0 ? 3.0 * bond_deviatoric_[b] * xi[b] / weighted_volume_[i]
+                                    : 0.0);
   }
   bond_reverse_weight_.resize(bonds);
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < bonds; ++b)
     bond_reverse_weight_[b] = bond_weight_[families.reverse[b]];
-  if (plastic_) set_up_plasticity(*plasticity);
+  if (plastic_) set_up_plasticity(*plasticity);  // from m_i
+  if (surface_correction == SurfaceCorrection::full) calibrate_deviatoric_weights();
+}
+
+// The deviatoric calibration's target per body: T/2μ = I₅ for an isotropic body, and for an
+// anisotropic one (Eq 17) the continuum limit of its own ω (deviatoric_calibration.hpp), so that
+// a particle at a surface answers as one inside the body.
+void LpsModel::calibrate_deviatoric_weights() {
+  const int n = particles_.count();
+  int bodies = 0;
+  for (int i = 0; i < n; ++i) bodies = std::max(bodies, particles_.body[i] + 1);
+  std::vector<DeviatoricShape> shape_of_body(bodies, isotropic_deviatoric_shape());
+  if (!materials_.anisotropy.empty()) {
+    std::vector<char> done(bodies, 0);
+    for (int i = 0; i < n; ++i)
+      if (!done[particles_.body[i]]++)
+        shape_of_body[particles_.body[i]] = anisotropic_deviatoric_shape(materials_.anisotropy[i]);
+  }
+  DeviatoricCalibration calibration =
+      deviatoric_weights(particles_, families_, bond_deviatoric_, materials_.shear_modulus,
+                         weighted_volume_, shape_of_body);
+  bond_deviatoric_ = std::move(calibration.weights);
+  deviatoric_summary_ = {calibration.exact_rows, calibration.fallback_rows,
+                         calibration.largest_residual};
+  const auto& off = families_.offsets;
+  const auto& xi = families_.reference_length;
+  bond_reverse_deviatoric_.resize(bond_deviatoric_.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    double M = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      bond_reverse_deviatoric_[b] = bond_deviatoric_[families_.reverse[b]];
+      M += double(bond_deviatoric_[b]) * xi[b] * xi[b] *
+           particles_.volume[families_.neighbors[b]];  // M_i = Σ w|ξ|²V_j
+    }
+    weighted_volume_[i] = M;
+  }
 }
 
 // A^c_i = √(2Ψ0) (Eq 14), or from a yield stress: the per-bond criterion |A_dev| ≤ A^c is a
@@ -95,13 +133,13 @@ void LpsModel::compute_dilatation(const double* y) {
 lps::BondRow LpsModel::bond_row(int i) const {
   return {families_.offsets[i],       families_.offsets[i + 1],
           families_.neighbors.data(), families_.reference_length.data(),
-          bond_omega_.data(),         bond_weight_.data(),
-          bond_reverse_weight_.data()};
+          bond_deviatoric_.data(),    reverse_deviatoric(),
+          bond_weight_.data(),        bond_reverse_weight_.data()};
 }
 
-// θ_i and the per-particle force terms from θ_i, θ_i − θ^p_i and Σ_j ω (e − e^p)|ξ| V_j:
-// Σ_j ω ê |ξ| V_j = Σ_j ω (e − e^p)|ξ| V_j − (θ − θ^p) m/3, with m over the intact bonds (zero
-// for an intact family without the calibration); D_i = κθ_i − (B_i/3) Σ_j ω ê |ξ| V_j and
+// θ_i and the per-particle force terms from θ_i, θ_i − θ^p_i and Σ_j w (e − e^p)|ξ| V_j:
+// Σ_j w ê |ξ| V_j = Σ_j w (e − e^p)|ξ| V_j − (θ − θ^p) M_i/3, with M_i over the intact bonds (zero
+// for an intact family without the calibrations); D_i = κθ_i − (B_i/3) Σ_j w ê |ξ| V_j and
 // S_i = B_i (θ_i − θ^p_i)/3 (notes §6).
 void LpsModel::set_terms(int i, double theta, double elastic_theta, double moment) {
   const double B = terms_[i].deviatoric;
@@ -123,7 +161,7 @@ void LpsModel::remember_plastic_terms(const double* y) {
 }
 
 // F_i = −∂Π/∂y_i = V_i Σ_j (t_ij + t_ji) n_ij V_j (Eqs 2–3), with the bond force density
-// t_ij = ½A_ij = c_ij D_i + ω_ij B_i ê_ij (Eqs 4, 8 and 12, corrected: notes §6). With Energy,
+// t_ij = ½A_ij = c_ij D_i + w_ij B_i ê_ij (Eqs 4, 8 and 12, corrected: notes §6). With Energy,
 // V_i W_i of energy_density from the same pass over row i's bonds.
 template <bool Plastic, bool Energy>
 void LpsModel::compute_forces(const double* y, double* f, double* energy) {
@@ -135,7 +173,7 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
     const double theta = dilatation_[i];
     const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;  // θ_i − θ^p_i
     const lps::BondRow row = bond_row(i);
-    double force[3], squares = 0;  // Σ_j ω ê² V_j
+    double force[3], squares = 0;  // Σ_j w ê² V_j
     if (Plastic && plastic_row_[i])
       plastic_force_row(row, i, y, elastic_theta, force, Energy ? &squares : nullptr);
     else
@@ -151,7 +189,7 @@ void LpsModel::compute_forces(const double* y, double* f, double* energy) {
 }
 
 // The force pass of a row with plastic extensions on its bonds: the elastic row's terms with
-// ê = e − e^p − (θ_i − θ^p_i)|ξ|/3 and e^p_ij (B_i) and e^p_ji (B_j) taken off (Eq 12).
+// ê = e − e^p − (θ_i − θ^p_i)|ξ|/3 and e^p_ij (w_ij B_i) and e^p_ji (w_ji B_j) taken off (Eq 12).
 void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y,
                                  double elastic_theta, double force[3], double* squares) const {
   const NeighbourTerms* terms = terms_.data();
@@ -168,10 +206,12 @@ void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y
     const double xi = row.reference_length[b];
     const double extension = length - xi;
     const NeighbourTerms& tj = terms[j];
-    const double deviatoric = extension * (Bi + tj.deviatoric) - xi * (Si + tj.shift) -
-                              (Bi * ep[b] + tj.deviatoric * ep_reverse[b]);
+    const double w_ij = row.deviatoric[b], w_ji = row.reverse_deviatoric[b];
+    const double deviatoric =
+        w_ij * (extension * Bi - xi * Si - Bi * ep[b]) +
+        w_ji * (extension * tj.deviatoric - xi * tj.shift - tj.deviatoric * ep_reverse[b]);
     const double t =
-        row.weight[b] * Di + row.reverse_weight[b] * tj.pressure + row.omega[b] * deviatoric;
+        (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) + deviatoric;
     // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
     const double s = length > 0 ? t * tj.volume / length : 0.0;
     f0 += s * d0;
@@ -179,7 +219,7 @@ void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y
     f2 += s * d2;
     if (squares) {
       const double e_hat = extension - ep[b] - elastic_theta * xi / 3.0;  // ê_ij
-      w += row.omega[b] * tj.volume * e_hat * e_hat;
+      w += w_ij * tj.volume * e_hat * e_hat;
     }
   }
   force[0] = f0;
@@ -224,7 +264,7 @@ void LpsModel::update_dilatation(const double* y) {
     compute_dilatation<false>(y);
 }
 
-// W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3
+// W_i = ½κθ_i² + ½B_i Σ_j w_ij ê_ij² V_j with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3
 // (notes §3, §6).
 double LpsModel::row_energy(const double* y, int i, double theta) const {
   const double* yi = y + 3 * i;
@@ -239,7 +279,7 @@ double LpsModel::row_energy(const double* y, int i, double theta) const {
     const double deviatoric = plastic_
                                   ? extension - plastic_extension_[b] - elastic_theta * xi / 3.0
                                   : extension - elastic_theta * xi / 3.0;
-    sum += bond_omega_[b] * particles_.volume[j] * deviatoric * deviatoric;
+    sum += bond_deviatoric_[b] * particles_.volume[j] * deviatoric * deviatoric;
   }
   return 0.5 * materials_.bulk_modulus[i] * theta * theta + 0.5 * terms_[i].deviatoric * sum;
 }
@@ -266,9 +306,10 @@ double LpsModel::rows_energy(const double* y, const std::vector<int>& rows) {
 }
 
 // Return map after a completed step (Eqs 13–16, corrected: notes §5–6). The trial deviatoric
-// force A_dev = 4ωb ê = 2ωB_i ê (Eq 12) is projected onto the yield surface |A_dev| = A^c
-// (Eq 14) by Δe^p = (A_dev − A^c sign A_dev)/(4ωb), the consistent step (the paper's 1/(2b)
-// over-relaxes by 2ω), and e^p is capped at γ = max_plastic_stretch |ξ| (Eq 16).
+// force A_dev = 4ωb ê = 2wB_i ê (Eq 12, with the bond's weight w for ω: the force it carries)
+// is projected onto the yield surface |A_dev| = A^c (Eq 14) by Δe^p = (A_dev − A^c sign A_dev)
+// /(2wB_i), the consistent step (the paper's 1/(2b) over-relaxes by 2ω), and e^p is capped at
+// γ = max_plastic_stretch |ξ| (Eq 16).
 // One pass over the bonds, row by row: θ_i as compute_dilatation sums it, the row's return map
 // on the extensions kept from that sum, then the row's θ^p_i and force terms at y with the new
 // e^p, so the next evaluation at y (the next step's first) starts from them.
@@ -277,7 +318,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
-  const float* omega = bond_omega_.data();
+  const float* w = bond_deviatoric_.data();
   const float* c = bond_weight_.data();
   const double* V = particles_.volume.data();
   double* ep = plastic_extension_.data();
@@ -311,7 +352,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
       bool row_flowed = flowed;
       for (int k = 0; k < count; ++k) {
         const int b = first + k, j = nbr[b];
-        const double stiffness = 2.0 * omega[b] * B;  // 4ωb
+        const double stiffness = 2.0 * w[b] * B;  // 4ωb, w for ω
         double plastic = flowed ? ep[b] : 0.0;
         // ê_ij = e − e^p − (θ_i − θ^p_i)|ξ|/3
         const double trial = stiffness * (row_extension[k] - plastic - trial_theta * xi[b] / 3.0);
@@ -376,21 +417,25 @@ void LpsModel::restore_state(const NamedArrays& state) {
 
 void LpsModel::break_bond(int i, std::size_t b) {
   const double xi = families_.reference_length[b];
-  weighted_volume_[i] -= bond_omega_[b] * xi * xi * particles_.volume[families_.neighbors[b]];
-  bond_omega_[b] = 0;
+  // M_i −= w|ξ|²V_j; the other weights of the row keep their calibration (docs/model.md)
+  weighted_volume_[i] -= bond_deviatoric_[b] * xi * xi * particles_.volume[families_.neighbors[b]];
+  bond_deviatoric_[b] = 0;
+  if (!bond_reverse_deviatoric_.empty()) bond_reverse_deviatoric_[b] = 0;
   bond_weight_[b] = 0;
   bond_reverse_weight_[b] = 0;
   mark_changed();
 }
 
 std::size_t LpsModel::bytes_per_bond() const {
-  // neighbour, |ξ|, reverse index; ω, c_ij, c_ji
-  return 2 * sizeof(int) + sizeof(double) + 3 * sizeof(float);
+  // neighbour, |ξ|, reverse index; w_ij, c_ij, c_ji, and w_ji when calibrated
+  const std::size_t reverse = bond_reverse_deviatoric_.empty() ? 0 : sizeof(float);
+  return 2 * sizeof(int) + sizeof(double) + 3 * sizeof(float) + reverse;
 }
 
 std::size_t LpsModel::bytes_read_per_bond() const {
-  // dilatation pass: neighbour, |ξ|, ω, c_ij; force pass: the same and c_ji
-  return 2 * (sizeof(int) + sizeof(double) + 2 * sizeof(float)) + sizeof(float);
+  // dilatation pass: neighbour, |ξ|, w_ij, c_ij; force pass: the same, c_ji and w_ji if its own
+  const std::size_t reverse = bond_reverse_deviatoric_.empty() ? 0 : sizeof(float);
+  return 2 * (sizeof(int) + sizeof(double) + 2 * sizeof(float)) + sizeof(float) + reverse;
 }
 
 ModelKind lps_model_kind() {

@@ -1,10 +1,13 @@
 #pragma once
 // The default elastic model: the paper's §4.1 with Λ dropped from Eqs 4, 6, 8, the weighted
 // volume m_i summed over each particle's actual family (linear peridynamic solid; notes §6), and
-// optionally the dilatation calibrated per particle so that it is exact near surfaces
-// (dilatation_calibration.hpp). Energy (per particle i, ê = e − e^p − (θ_i − θ^p_i)|ξ|/3):
-//   W_i = ½κθ_i² + 15μ/(2m_i) Σ_j ω_ij ê_ij² V_j,   θ_i = Σ_j c_ij e_ij V_j,
-// with the plastic extensions e^p (§4.2) held fixed between steps.
+// optionally (material.surface_correction) the dilatation calibrated per particle so that it is
+// exact near surfaces (dilatation_calibration.hpp), and the deviatoric weights so that every
+// small homogeneous strain gives the continuum's energy (deviatoric_calibration.hpp). Energy (per
+// particle i, ê = e − e^p − (θ_i − θ^p_i)|ξ|/3):
+//   W_i = ½κθ_i² + ½B_i Σ_j w_ij ê_ij² V_j,   B_i = 15μ_i/m_i,   θ_i = Σ_j c_ij e_ij V_j,
+// with w_ij = ρ_ij ω_ij (ρ ≡ 1 without the deviatoric calibration) and the plastic extensions
+// e^p (§4.2) held fixed between steps.
 #include <cstdint>
 #include <utility>
 
@@ -12,13 +15,14 @@
 #include "model/model_registry.hpp"
 #include "model/plastic_flow.hpp"
 #include "model/stiffness.hpp"
+#include "scene/config.hpp"
 
 namespace fissure {
 
 class LpsModel final : public Model, public Stiffness, public PlasticFlow {
  public:
   LpsModel(const Particles& particles, const Families& families, MaterialPoints materials,
-           bool surface_correction, const PlasticPoints* plasticity);
+           SurfaceCorrection surface_correction, const PlasticPoints* plasticity);
   std::string name() const override { return "lps"; }
   void forces(const double* y, double* f) override;
   void energy_density(const double* y, double* w) override;
@@ -27,7 +31,7 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   std::size_t bytes_per_bond() const override;
   std::size_t bytes_read_per_bond() const override;
   void break_bond(int i, std::size_t b) override;
-  bool bond_intact(std::size_t b) const override { return bond_omega_[b] != 0; }
+  bool bond_intact(std::size_t b) const override { return bond_deviatoric_[b] != 0; }
   Stiffness* stiffness() override { return this; }
   const Stiffness* stiffness() const override { return this; }
   PlasticFlow* plastic_flow() override { return plastic_ ? this : nullptr; }
@@ -43,11 +47,17 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void assemble_scalar_stiffness(SparseSymmetric& L) const override;
   double forces_and_energy(const double* y, double* f) override;
   double rows_energy(const double* y, const std::vector<int>& rows) override;
+  // What the deviatoric calibration reached (surface_correction: full; zeros otherwise).
+  struct DeviatoricSummary {
+    int exact_rows = 0, fallback_rows = 0;
+    double largest_residual = 0;
+  };
+  const DeviatoricSummary& deviatoric_summary() const { return deviatoric_summary_; }
 
  private:
   template <bool Plastic>
   void compute_dilatation(const double* y);
-  // θ_i and row i's force terms from θ_i, θ_i − θ^p_i and Σ_j ω (e − e^p)|ξ| V_j.
+  // θ_i and row i's force terms from θ_i, θ_i − θ^p_i and Σ_j w (e − e^p)|ξ| V_j.
   void set_terms(int i, double theta, double elastic_theta, double moment);
   // With plasticity: whether dilatation_ and terms_ hold compute_dilatation<true>(y) at this
   // revision (the return map leaves them so for the positions it ran at), and remembering that.
@@ -57,7 +67,7 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // the force kernel is the plain one.
   template <bool Plastic, bool Energy>
   void compute_forces(const double* y, double* f, double* energy);
-  // The force pass of a row with plastic extensions: force[0..2] and, with squares, Σ ω ê² V_j.
+  // The force pass of a row with plastic extensions: force[0..2] and, with squares, Σ w ê² V_j.
   void plastic_force_row(const lps::BondRow& row, int i, const double* y, double elastic_theta,
                          double force[3], double* squares) const;
   void update_dilatation(const double* y);
@@ -74,15 +84,26 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   double row_energy(const double* y, int i, double theta) const;
   double pair_force(int i, std::size_t b, double length) const;
   void set_up_plasticity(const PlasticPoints& plasticity);
+  // surface_correction: full: w = ρω from deviatoric_weights() and M_i over them.
+  void calibrate_deviatoric_weights();
+  // w_ji in row i's order: its own array with the deviatoric calibration, else w itself (ω is
+  // the same in both rows of a pair).
+  const float* reverse_deviatoric() const {
+    return bond_reverse_deviatoric_.empty() ? bond_deviatoric_.data()
+                                            : bond_reverse_deviatoric_.data();
+  }
 
   // Per bond, single precision: the same rounded value serves both rows of a pair, so
   // action equals reaction exactly; V_j is applied in double precision in the kernels.
-  std::vector<float> bond_omega_;           // ω_ij (Eq 5)
-  std::vector<float> bond_weight_;          // c_ij
-  std::vector<float> bond_reverse_weight_;  // c_ji, the weight of the same bond in j's row
-  std::vector<double> weighted_volume_;     // m_i = Σ_j ω_ij |ξ_ij|² V_j over the intact bonds
-  std::vector<double> dilatation_;          // θ_i, scratch of each evaluation at its y
-  // What the force pass gathers from each neighbour j: pressure D_j = κθ_j − (B_j/3) Σ_k ω ê |ξ|
+  std::vector<float> bond_deviatoric_;          // w_ij = ρ_ij ω_ij (ω of Eq 5, 17)
+  std::vector<float> bond_reverse_deviatoric_;  // w_ji in row i's order; only when w ≠ ω
+  std::vector<float> bond_weight_;              // c_ij
+  std::vector<float> bond_reverse_weight_;      // c_ji, the weight of the same bond in j's row
+  // M_i = Σ_j w_ij |ξ_ij|² V_j over the intact bonds (m_i of notes §6 while w = ω)
+  std::vector<double> weighted_volume_;
+  DeviatoricSummary deviatoric_summary_;
+  std::vector<double> dilatation_;  // θ_i, scratch of each evaluation at its y
+  // What the force pass gathers from each neighbour j: pressure D_j = κθ_j − (B_j/3) Σ_k w ê |ξ|
   // V_k and shift B_j (θ_j − θ^p_j)/3 per force call, deviatoric B_j and volume V_j.
   using NeighbourTerms = lps::NeighbourTerms;
   std::vector<NeighbourTerms> terms_;

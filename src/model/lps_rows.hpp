@@ -13,9 +13,10 @@ struct BondRow {
   int begin, end;
   const int* neighbor;
   const double* reference_length;  // |ξ|
-  const float* omega;              // ω_ij
-  const float* weight;             // c_ij
-  const float* reverse_weight;     // c_ji
+  const float* deviatoric;  // w_ij: the deviatoric stiffness of the bond in row i is B_i w_ij
+  const float* reverse_deviatoric;  // w_ji, the same bond's in j's row (= deviatoric when w = ω)
+  const float* weight;              // c_ij
+  const float* reverse_weight;      // c_ji
 };
 
 // What the force pass gathers from each neighbour (LpsModel's NeighbourTerms, the same layout).
@@ -25,7 +26,7 @@ struct NeighbourTerms {
 
 struct DilatationSums {
   double theta;   // θ_i = Σ_j c_ij e_ij V_j (Eq 6)
-  double moment;  // Σ_j ω_ij |ξ| (e_ij − e^p_ij) V_j
+  double moment;  // Σ_j w_ij |ξ| (e_ij − e^p_ij) V_j
 };
 
 // The dilatation pass of row i at positions y: e_ij = |y_j − y_i| − |ξ|; with plastic_extension
@@ -35,14 +36,14 @@ using DilatationRow = DilatationSums (*)(const BondRow& row, int i, const double
                                          const double* volume, const double* plastic_extension,
                                          double* extension);
 
-// The moment of the return map (LpsModel::update_plasticity): Σ_j ω|ξ| (e_ij V_j − e^p_ij V_j)
+// The moment of the return map (LpsModel::update_plasticity): Σ_j w|ξ| (e_ij V_j − e^p_ij V_j)
 // from the extensions the dilatation pass left (e^p null: +0), the bits of that pass's moment.
 using MomentRow = double (*)(const BondRow& row, const double* extension, const double* volume,
                              const double* plastic_extension);
 
 // The force pass of an elastic row (no e^p on its bonds in either direction): the force density
 // sum Σ_j (t_ij + t_ji) V_j n_ij into force[0..2] (Eqs 2–3), and with squares non-null also
-// Σ_j ω ê² V_j with ê = e − θ_e |ξ|/3, θ_e = elastic_theta (energy_density's sum).
+// Σ_j w ê² V_j with ê = e − θ_e |ξ|/3, θ_e = elastic_theta (energy_density's sum).
 struct ForceRowInput {
   const BondRow* row;
   int i;
@@ -53,7 +54,7 @@ struct ForceRowInput {
 using ForceRow = void (*)(const ForceRowInput& in, double force[3], double* squares);
 
 // The return map's test on a row that never flowed (e^p = +0): whether any bond's trial
-// deviatoric force 2ωB (e − θ|ξ|/3) exceeds the yield force A^c (Eqs 12, 14), the same test in
+// deviatoric force 2wB (e − θ|ξ|/3) exceeds the yield force A^c (Eqs 12, 14), the same test in
 // the same arithmetic as LpsModel::update_plasticity's.
 using YieldRow = bool (*)(const BondRow& row, const double* extension, double deviatoric,
                           double trial_theta, double yield_force);

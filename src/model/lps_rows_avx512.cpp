@@ -61,7 +61,7 @@ DilatationSums dilatation_row_sums(const BondRow& row, int i, const double* y, c
     prefetch(row.reference_length + b + prefetch_distance);
     prefetch(row.neighbor + b + prefetch_distance);
     prefetch(row.weight + b + prefetch_distance);
-    prefetch(row.omega + b + prefetch_distance);
+    prefetch(row.deviatoric + b + prefetch_distance);
     const __mmask8 m = lanes_left(b, row.end);
     const __m256i j = _mm256_maskz_loadu_epi32(m, row.neighbor + b);
     const __m512d xi = _mm512_maskz_loadu_pd(m, row.reference_length + b);
@@ -71,11 +71,11 @@ DilatationSums dilatation_row_sums(const BondRow& row, int i, const double* y, c
     const __m512d Vj = _mm512_mask_i32gather_pd(zero, m, j, V, 8);
     const __m512d eV = _mm512_mul_pd(e, Vj);
     theta = _mm512_mask_add_pd(theta, m, theta, _mm512_mul_pd(widen(m, row.weight + b), eV));
-    const __m512d omega_xi = _mm512_mul_pd(widen(m, row.omega + b), xi);
+    const __m512d w_xi = _mm512_mul_pd(widen(m, row.deviatoric + b), xi);
     __m512d strain = eV;
     if constexpr (Plastic)
       strain = _mm512_sub_pd(eV, _mm512_mul_pd(_mm512_maskz_loadu_pd(m, ep + b), Vj));
-    moment = _mm512_mask_add_pd(moment, m, moment, _mm512_mul_pd(omega_xi, strain));
+    moment = _mm512_mask_add_pd(moment, m, moment, _mm512_mul_pd(w_xi, strain));
   }
   return {reduce(theta), reduce(moment)};
 }
@@ -98,10 +98,10 @@ double moment_row(const BondRow& row, const double* extension, const double* V, 
     const __m512d Vj = _mm512_mask_i32gather_pd(zero, m, j, V, 8);
     const __m512d xi = _mm512_maskz_loadu_pd(m, row.reference_length + b);
     const __m512d eV = _mm512_mul_pd(_mm512_maskz_loadu_pd(m, extension + (b - row.begin)), Vj);
-    const __m512d omega_xi = _mm512_mul_pd(widen(m, row.omega + b), xi);
+    const __m512d w_xi = _mm512_mul_pd(widen(m, row.deviatoric + b), xi);
     const __m512d strain =
         ep ? _mm512_sub_pd(eV, _mm512_mul_pd(_mm512_maskz_loadu_pd(m, ep + b), Vj)) : eV;
-    moment = _mm512_mask_add_pd(moment, m, moment, _mm512_mul_pd(omega_xi, strain));
+    moment = _mm512_mask_add_pd(moment, m, moment, _mm512_mul_pd(w_xi, strain));
   }
   return reduce(moment);
 }
@@ -115,12 +115,14 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
                 Si = _mm512_set1_pd(ti.shift), elastic_theta = _mm512_set1_pd(in.elastic_theta),
                 three = _mm512_set1_pd(3.0), zero = _mm512_setzero_pd();
   __m512d f0 = zero, f1 = zero, f2 = zero, w = zero;
+  const bool separate_reverse = row.reverse_deviatoric != row.deviatoric;
   for (int b = row.begin; b < row.end; b += 8) {
     prefetch(row.reference_length + b + prefetch_distance);
     prefetch(row.neighbor + b + prefetch_distance);
     prefetch(row.weight + b + prefetch_distance);
     prefetch(row.reverse_weight + b + prefetch_distance);
-    prefetch(row.omega + b + prefetch_distance);
+    prefetch(row.deviatoric + b + prefetch_distance);
+    if (separate_reverse) prefetch(row.reverse_deviatoric + b + prefetch_distance);
     const __mmask8 m = lanes_left(b, row.end);
     const __m256i j = _mm256_maskz_loadu_epi32(m, row.neighbor + b);
     const Bonds d = bond_vectors(m, j, in.y, in.y + 3 * in.i);
@@ -132,13 +134,14 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
     const __m512d Bj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 1, 8);
     const __m512d Sj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 2, 8);
     const __m512d Vj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 3, 8);
-    const __m512d deviatoric = _mm512_sub_pd(_mm512_mul_pd(e, _mm512_add_pd(Bi, Bj)),
-                                             _mm512_mul_pd(xi, _mm512_add_pd(Si, Sj)));
-    const __m512d omega = widen(m, row.omega + b);
+    const __m512d w_ij = widen(m, row.deviatoric + b), w_ji = widen(m, row.reverse_deviatoric + b);
+    const __m512d deviatoric = _mm512_add_pd(
+        _mm512_mul_pd(w_ij, _mm512_sub_pd(_mm512_mul_pd(e, Bi), _mm512_mul_pd(xi, Si))),
+        _mm512_mul_pd(w_ji, _mm512_sub_pd(_mm512_mul_pd(e, Bj), _mm512_mul_pd(xi, Sj))));
     const __m512d t =
         _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(widen(m, row.weight + b), Di),
                                     _mm512_mul_pd(widen(m, row.reverse_weight + b), Dj)),
-                      _mm512_mul_pd(omega, deviatoric));
+                      deviatoric);
     // a collapsed bond (ℓ = 0) carries no force
     const __mmask8 stretched = _mm512_mask_cmp_pd_mask(m, length, zero, _CMP_GT_OQ);
     const __m512d s = _mm512_maskz_div_pd(stretched, _mm512_mul_pd(t, Vj), length);
@@ -149,7 +152,7 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
       const __m512d e_hat =
           _mm512_sub_pd(e, _mm512_div_pd(_mm512_mul_pd(elastic_theta, xi), three));
       w = _mm512_mask_add_pd(w, m, w,
-                             _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(omega, Vj), e_hat), e_hat));
+                             _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(w_ij, Vj), e_hat), e_hat));
     }
   }
   force[0] = reduce(f0);
@@ -173,8 +176,8 @@ bool yields(const BondRow& row, const double* extension, double B, double trial_
   for (int b = row.begin; b < row.end; b += 8) {
     const __mmask8 m = lanes_left(b, row.end);
     const __m512d xi = _mm512_maskz_loadu_pd(m, row.reference_length + b);
-    const __m512d stiffness =
-        _mm512_mul_pd(_mm512_mul_pd(two, widen(m, row.omega + b)), deviatoric);  // 4ωb
+    const __m512d stiffness = _mm512_mul_pd(_mm512_mul_pd(two, widen(m, row.deviatoric + b)),
+                                            deviatoric);  // 4ωb, w for ω
     const __m512d e = _mm512_maskz_loadu_pd(m, extension + (b - row.begin));
     const __m512d trial =
         _mm512_mul_pd(stiffness, _mm512_sub_pd(e, _mm512_div_pd(_mm512_mul_pd(theta, xi), three)));

@@ -30,8 +30,8 @@ DilatationSums dilatation_row(const BondRow& row, int i, const double* y, const 
     if (extension) extension[b - row.begin] = e;
     const double eV = e * V[j];
     theta[lane] += double(row.weight[b]) * eV;  // c_ij e_ij V_j (Eq 6)
-    const double omega_xi = double(row.omega[b]) * xi;
-    moment[lane] += ep ? omega_xi * (eV - ep[b] * V[j]) : omega_xi * eV;
+    const double w_xi = double(row.deviatoric[b]) * xi;
+    moment[lane] += ep ? w_xi * (eV - ep[b] * V[j]) : w_xi * eV;
   }
   return {reduce(theta), reduce(moment)};
 }
@@ -41,14 +41,14 @@ double moment_row(const BondRow& row, const double* extension, const double* V, 
   for (int b = row.begin; b < row.end; ++b) {
     const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
     const double xi = row.reference_length[b];
-    const double omega_xi = double(row.omega[b]) * xi, eV = extension[b - row.begin] * V[j];
-    moment[lane] += ep ? omega_xi * (eV - ep[b] * V[j]) : omega_xi * eV;
+    const double w_xi = double(row.deviatoric[b]) * xi, eV = extension[b - row.begin] * V[j];
+    moment[lane] += ep ? w_xi * (eV - ep[b] * V[j]) : w_xi * eV;
   }
   return reduce(moment);
 }
 
-// t_ij + t_ji = c_ij D_i + c_ji D_j + ω_ij [e (B_i + B_j) − |ξ| (S_i + S_j)] (Eqs 4, 8, 12; notes
-// §6), times V_j/ℓ along d = y_j − y_i.
+// t_ij + t_ji = c_ij D_i + c_ji D_j + w_ij (e B_i − |ξ| S_i) + w_ji (e B_j − |ξ| S_j) (Eqs 4, 8,
+// 12; notes §6; w = ω uncalibrated), times V_j/ℓ along d = y_j − y_i.
 void force_row(const ForceRowInput& in, double force[3], double* squares) {
   const BondRow& row = *in.row;
   const int i = in.i;
@@ -65,10 +65,11 @@ void force_row(const ForceRowInput& in, double force[3], double* squares) {
     const double xi = row.reference_length[b];
     const double e = length - xi;
     const NeighbourTerms& tj = terms[j];
-    const double deviatoric = e * (Bi + tj.deviatoric) - xi * (Si + tj.shift);
-    const double omega = row.omega[b];
-    const double t = (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) +
-                     omega * deviatoric;
+    const double w_ij = row.deviatoric[b], w_ji = row.reverse_deviatoric[b];
+    const double deviatoric =
+        w_ij * (e * Bi - xi * Si) + w_ji * (e * tj.deviatoric - xi * tj.shift);
+    const double t =
+        (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) + deviatoric;
     // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
     const double s = length > 0 ? t * tj.volume / length : 0.0;
     f0[lane] += s * d0;
@@ -76,7 +77,7 @@ void force_row(const ForceRowInput& in, double force[3], double* squares) {
     f2[lane] += s * d2;
     if (squares) {
       const double e_hat = e - in.elastic_theta * xi / 3.0;  // ê_ij
-      w[lane] += omega * tj.volume * e_hat * e_hat;
+      w[lane] += w_ij * tj.volume * e_hat * e_hat;
     }
   }
   force[0] = reduce(f0);
@@ -89,7 +90,7 @@ bool yields(const BondRow& row, const double* extension, double B, double trial_
             double yield_force) {
   for (int b = row.begin; b < row.end; ++b) {
     const double xi = row.reference_length[b];
-    const double stiffness = 2.0 * row.omega[b] * B;  // 4ωb
+    const double stiffness = 2.0 * row.deviatoric[b] * B;  // 4ωb, with w for ω
     const double trial = stiffness * (extension[b - row.begin] - trial_theta * xi / 3.0);
     if (stiffness > 0 && std::abs(trial) > yield_force) return true;
   }

@@ -1,9 +1,10 @@
 // Bond-wise stiffness of the LPS model (notes §3, §6): the exact tangent K = ∂²Π/∂y² with e^p
 // frozen, and a positive semidefinite bond-wise majoriser K^bw ⪰ K for Newton's matrix.
 //
-// With ê = u − θ̃|ξ|/3, u = e − e^p, θ̃ = c̄ᵀu (c̄_j = c_ij V_j) and w_j = ω_ij V_j |ξ_ij|, the
-// energy of particle i is a quadratic form in its bond extensions, W_i = ½ uᵀH_i u + …, with
-//   H_i = κ c̄c̄ᵀ + B_i [D − (c̄wᵀ + wc̄ᵀ)/3 + (m_i/9) c̄c̄ᵀ],   D = diag(ω_ij V_j),
+// With ê = u − θ̃|ξ|/3, u = e − e^p, θ̃ = c̄ᵀu (c̄_j = c_ij V_j) and w_j = w_ij V_j |ξ_ij| (w_ij the
+// row's deviatoric weight, ω_ij uncalibrated), the energy of particle i is a quadratic form in its
+// bond extensions, W_i = ½ uᵀH_i u + …, with (M_i = Σ_j w_ij |ξ|² V_j, m_i while w = ω)
+//   H_i = κ c̄c̄ᵀ + B_i [D − (c̄wᵀ + wc̄ᵀ)/3 + (M_i/9) c̄c̄ᵀ],   D = diag(w_ij V_j),
 // and Π = Σ V_i W_i. The extension e_ij = |y_j − y_i| − |ξ| has gradient ±n and Hessian
 // (I − nnᵀ)/ℓ, which gives the geometric term p (I − nnᵀ)/ℓ with p = V_i V_j (t_ij + t_ji).
 #include <algorithm>
@@ -43,23 +44,26 @@ double LpsModel::pair_force(int i, std::size_t b, double length) const {
   const NeighbourTerms& ti = terms_[i];
   const NeighbourTerms& tj = terms_[j];
   const double xi = families_.reference_length[b];
-  double deviatoric = (length - xi) * (ti.deviatoric + tj.deviatoric) - xi * (ti.shift + tj.shift);
-  if (plastic_)
-    deviatoric -= ti.deviatoric * plastic_extension_[b] +
-                  tj.deviatoric * plastic_extension_[families_.reverse[b]];
+  const double e = length - xi;
+  double own = e * ti.deviatoric - xi * ti.shift, other = e * tj.deviatoric - xi * tj.shift;
+  if (plastic_) {
+    own -= ti.deviatoric * plastic_extension_[b];
+    other -= tj.deviatoric * plastic_extension_[families_.reverse[b]];
+  }
   const double t = bond_weight_[b] * ti.pressure + bond_reverse_weight_[b] * tj.pressure +
-                   bond_omega_[b] * deviatoric;
+                   bond_deviatoric_[b] * own + reverse_deviatoric()[b] * other;
   return ti.volume * tj.volume * t;
 }
 
-// Notes §3, adapted to the calibrated weights: with r = c̄ − 3w/m_i (zero without calibration),
-//   H_i = B_i D + (κ − B_i m_i/9) c̄c̄ᵀ + (B_i m_i/9)(c̄rᵀ + rc̄ᵀ)
-//       ⪯ B_i D + a_i c̄c̄ᵀ + q_i rrᵀ,   a_i = max(0, κ − (1 − ε) B_i m_i/9),  q_i = B_i m_i/(9ε),
+// Notes §3, adapted to the calibrated weights: with r = c̄ − 3w/M_i (zero without calibration),
+//   H_i = B_i D + (κ − B_i M_i/9) c̄c̄ᵀ + (B_i M_i/9)(c̄rᵀ + rc̄ᵀ)
+//       ⪯ B_i D + a_i c̄c̄ᵀ + q_i rrᵀ,   a_i = max(0, κ − (1 − ε) B_i M_i/9),  q_i = B_i M_i/(9ε),
 // for any ε in (0, 1] (c̄rᵀ + rc̄ᵀ ⪯ ε c̄c̄ᵀ + rrᵀ/ε; ε = |r|/|c̄| balances the two), and a rank-one
 // aaᵀ ⪯ diag(Σ_k|a_k| |a_j|) by Cauchy–Schwarz. So each bond gets a stiffness along n, and the
-// geometric term is clamped at max(p, 0): K^bw ⪰ K and K^bw ⪰ 0.
-// h_ij = V_i [B_i ω_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond b,
-// for every directed bond: a bond's stiffness is h_ij + h_ji. A broken bond (ω = c = 0) has
+// geometric term is clamped at max(p, 0): K^bw ⪰ K and K^bw ⪰ 0 (D ⪰ 0 as w ≥ 0: the deviatoric
+// calibration keeps ρ ≥ ρ_min > 0).
+// h_ij = V_i [B_i w_ij V_j + a_i S_c |c̄_ij| + q_i S_r |r_ij|], the stiffness row i gives bond b,
+// for every directed bond: a bond's stiffness is h_ij + h_ji. A broken bond (w = c = 0) has
 // c̄ = r = 0, so h = 0; it is set so explicitly, so that no 0·∞ of a degenerate family can give it
 // a stiffness.
 std::vector<LpsModel::MajoriserRow> LpsModel::majoriser_rows() const {
@@ -85,18 +89,18 @@ std::vector<LpsModel::MajoriserRow> LpsModel::majoriser_rows() const {
   return rows;
 }
 
-// c̄_ij and r_ij = c̄_ij − 3 ω_ij |ξ_ij| V_j / m_i
+// c̄_ij and r_ij = c̄_ij − 3 w_ij |ξ_ij| V_j / M_i
 std::pair<double, double> LpsModel::majoriser_weights(int i, int b) const {
   const double Vj = particles_.volume[families_.neighbors[b]], m = weighted_volume_[i];
   const double c = bond_weight_[b] * Vj;
-  return {c, m > 0 ? c - 3.0 * bond_omega_[b] * families_.reference_length[b] * Vj / m : 0.0};
+  return {c, m > 0 ? c - 3.0 * bond_deviatoric_[b] * families_.reference_length[b] * Vj / m : 0.0};
 }
 
 double LpsModel::majoriser_bond_row(const std::vector<MajoriserRow>& rows, int i, int b) const {
-  if (bond_omega_[b] == 0) return 0.0;
+  if (bond_deviatoric_[b] == 0) return 0.0;
   const auto [c, r] = majoriser_weights(i, b);
   const auto& V = particles_.volume;
-  return V[i] * (terms_[i].deviatoric * bond_omega_[b] * V[families_.neighbors[b]] +
+  return V[i] * (terms_[i].deviatoric * bond_deviatoric_[b] * V[families_.neighbors[b]] +
                  rows[i].a_sum_c * std::abs(c) + rows[i].q_sum_r * std::abs(r));
 }
 
@@ -207,7 +211,7 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
       geometry[b] = bond_geometry(y, particles_, i, j, xi[b]);
       for (int d = 0; d < 3; ++d) {
         sc[d] += bond_weight_[b] * V[j] * geometry[b].n[d];
-        sw[d] += bond_omega_[b] * V[j] * xi[b] * geometry[b].n[d];
+        sw[d] += bond_deviatoric_[b] * V[j] * xi[b] * geometry[b].n[d];
       }
     }
     sum_c[i] = sc;
@@ -222,12 +226,13 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
       const int first = K.offsets[3 * r], blocks = (K.offsets[3 * r + 1] - first) / 3;
       for (int k = 0; k < blocks; ++k) block_of[K.columns[first + 3 * k] / 3] = k;
       const int stride = K.offsets[3 * r + 1] - first;  // values per scalar row
-      // Bond terms of row r: V_r B_r ω V_s + V_s B_s ω V_r along n, geometric p/ℓ across.
+      // Bond terms of row r: V_r B_r w_rs V_s + V_s B_s w_sr V_r along n, geometric p/ℓ across.
       for (int b = off[r]; b < off[r + 1]; ++b) {
         const int s = nbr[b];
         const BondGeometry& g = geometry[b];
-        const double k =
-            V[r] * V[s] * bond_omega_[b] * (terms_[r].deviatoric + terms_[s].deviatoric);
+        const double k = V[r] * V[s] *
+                         (terms_[r].deviatoric * bond_deviatoric_[b] +
+                          terms_[s].deviatoric * reverse_deviatoric()[b]);
         const double p = g.length > 0 ? pair_force(r, b, g.length) : 0.0;
         scatter_bond(K, r, block_of[r], block_of[s], g.n, k,
                      (clamp_compression ? std::max(p, 0.0) : p) / std::max(g.length, 1e-300));
@@ -243,7 +248,7 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
           const int b = rev[q];  // bond i → r in row i
           for (int d = 0; d < 3; ++d) {
             gc_r[d] = bond_weight_[b] * V[r] * geometry[b].n[d];
-            gw_r[d] = bond_omega_[b] * V[r] * xi[b] * geometry[b].n[d];
+            gw_r[d] = bond_deviatoric_[b] * V[r] * xi[b] * geometry[b].n[d];
           }
         }
         const double B = terms_[i].deviatoric;
@@ -263,7 +268,7 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
         add_family_block(i, gc_s, gw_s);
         for (int b = off[i]; b < off[i + 1]; ++b) {
           const int s = nbr[b];
-          const double c = bond_weight_[b] * V[s], w = bond_omega_[b] * V[s] * xi[b];
+          const double c = bond_weight_[b] * V[s], w = bond_deviatoric_[b] * V[s] * xi[b];
           for (int d = 0; d < 3; ++d) {
             gc_s[d] = c * geometry[b].n[d];
             gw_s[d] = w * geometry[b].n[d];

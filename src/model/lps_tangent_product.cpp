@@ -2,18 +2,18 @@
 // assemble_tangent (lps_stiffness.cpp), K⁺ with clamp_compression.
 //
 // With s_b = n_b·(v_j − v_i) the extension rate of bond b (i → j), the material part of family i
-// is V_i J_iᵀ H_i s, whose bond b component is, with c̄_b = c_ij V_j, w_b = ω_ij V_j |ξ_b|,
-// P_i = Σ_b c̄_b s_b and Q_i = Σ_b w_b s_b,
-//   t_b = V_i [(κ_i + B_i m_i/9) c̄_b P_i + B_i ω_ij V_j s_b − (B_i/3)(c̄_b Q_i + w_b P_i)]
-//       = V_j [c_ij X_i + ω_ij (3γ_i s_b − |ξ_b| Y_i)],
-//   X_i = α_i P_i − γ_i Q_i,  Y_i = γ_i P_i,  α_i = V_i (κ_i + B_i m_i/9),  γ_i = V_i B_i/3,
+// is V_i J_iᵀ H_i s, whose bond b component is, with c̄_b = c_ij V_j, w_b = w_ij V_j |ξ_b| (w_ij
+// the row's deviatoric weight), P_i = Σ_b c̄_b s_b and Q_i = Σ_b w_b s_b,
+//   t_b = V_i [(κ_i + B_i M_i/9) c̄_b P_i + B_i w_ij V_j s_b − (B_i/3)(c̄_b Q_i + w_b P_i)]
+//       = V_j [c_ij X_i + w_ij (3γ_i s_b − |ξ_b| Y_i)],
+//   X_i = α_i P_i − γ_i Q_i,  Y_i = γ_i P_i,  α_i = V_i (κ_i + B_i M_i/9),  γ_i = V_i B_i/3,
 // and J_iᵀ puts −t_b n_b on i and +t_b n_b on j. The geometric term of each pair adds
 // g_b (I − n nᵀ)(v_i − v_j) to row i, g_b = p_b/ℓ_b (pair_force; p⁺ = max(p, 0) with
 // clamp_compression). Row r gathers its own family's t_b and, for each member i (bond q, r → i),
 // family i's t for the bond i → r, whose direction is −n_q and rate s_q, with c_ir =
-// bond_reverse_weight_[q] and ω symmetric: (K v)_r = Σ_q [(g_q s_q − t_rq − t_ir) n_q +
-// g_q (v_r − v_i)]. Two passes over the bonds as compute_dilatation and compute_forces, each
-// parallel over particles without atomics: P, Q per family, then the rows.
+// bond_reverse_weight_[q] and w_ir = reverse_deviatoric()[q]: (K v)_r = Σ_q [(g_q s_q − t_rq −
+// t_ir) n_q + g_q (v_r − v_i)]. Two passes over the bonds as compute_dilatation and compute_forces,
+// each parallel over particles without atomics: P, Q per family, then the rows.
 #include <algorithm>
 
 #include "model/lps_bond_geometry.hpp"
@@ -59,7 +59,8 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
-  const float* omega = bond_omega_.data();
+  const float* w = bond_deviatoric_.data();
+  const float* w_reverse = reverse_deviatoric();
   const float* c = bond_weight_.data();
   const float* c_reverse = bond_reverse_weight_.data();
   const double* V = particles_.volume.data();
@@ -82,7 +83,7 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
       rate[b] = s;
       const double sV = s * V[j];
       P += c[b] * sV;
-      Q += omega[b] * xi[b] * sV;
+      Q += w[b] * xi[b] * sV;
     }
     const double gamma = terms[i].gamma;
     terms[i].x = alpha[i] * P - gamma * Q;
@@ -99,10 +100,9 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
       const double* vi = v + 3 * i;
       const TangentTerms& ti = terms[i];
       const double s = rate[b];
-      const double t_own =
-          ti.volume * (c[b] * tr.x + omega[b] * (3.0 * tr.gamma * s - xi[b] * tr.y));
+      const double t_own = ti.volume * (c[b] * tr.x + w[b] * (3.0 * tr.gamma * s - xi[b] * tr.y));
       const double t_member =
-          tr.volume * (c_reverse[b] * ti.x + omega[b] * (3.0 * ti.gamma * s - xi[b] * ti.y));
+          tr.volume * (c_reverse[b] * ti.x + w_reverse[b] * (3.0 * ti.gamma * s - xi[b] * ti.y));
       const double along = g[b] * s - t_own - t_member;
       o0 += along * nx[b] + g[b] * (vr0 - vi[0]);
       o1 += along * ny[b] + g[b] * (vr1 - vi[1]);

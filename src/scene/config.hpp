@@ -55,12 +55,17 @@ struct AnisotropySettings {
   std::array<double, 9> G{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row major
 };
 
+// lps only (docs/model.md, deviations 4 and 8): none, the dilatation weights calibrated so that
+// θ = tr ε near surfaces, or those and the deviatoric weights calibrated so that every small
+// homogeneous strain gives the continuum's energy on every particle.
+enum class SurfaceCorrection { none, dilatation, full };
+
 struct Material {
   std::string model = "lps";  // a registered model (model/model_registry.hpp)
   double density = 0;
   double bulk_modulus = 0;
   double shear_modulus = 0;
-  bool surface_correction = true;  // lps only: calibrated dilatation weights (docs/model.md)
+  SurfaceCorrection surface_correction = SurfaceCorrection::dilatation;
   FractureSettings fracture;
   PlasticitySettings plasticity;
   AnisotropySettings anisotropy;

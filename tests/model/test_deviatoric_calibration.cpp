@@ -1,4 +1,5 @@
-// The deviatoric calibration (model/deviatoric_calibration.hpp): per row, bond weights g_ij that
+// The deviatoric calibration (model/deviatoric_calibration.hpp): per row, bond stiffnesses
+// g_ij = B_i w_ij from the module's weights w_ij = ρ_ij ω_ij that
 // give the continuum's deviatoric energy μ|ε|² for every small traceless strain ε, checked from
 // finite strains applied to the particles' positions (not from the a-vector algebra of the
 // module); bounded weights; the reported residual; and ρ ≡ 1 where a row falls back.
@@ -64,12 +65,14 @@ DeviatoricCalibration calibrate(const Particles& p, const Families& f, const Mod
                             std::vector<DeviatoricShape>(bodies, isotropic_deviatoric_shape()));
 }
 
-// Today's weights, ρ ≡ 1: fl(ω_ij B_i), B_i = 15μ_i/m_i.
-std::vector<float> uncalibrated(const Families& f, const ModelInputs& in) {
-  std::vector<float> g(f.directed_bonds());
+// The bond stiffnesses g_ij = B_i w_ij of the weights w, B_i = 15μ_i/m_i (notes §6); with
+// w = ω (ρ ≡ 1) the uncorrected model's.
+std::vector<double> stiffness(const Families& f, const ModelInputs& in,
+                              const std::vector<float>& w) {
+  std::vector<double> g(f.directed_bonds());
   for (std::size_t i = 0; i + 1 < f.offsets.size(); ++i)
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b)
-      g[b] = static_cast<float>(double(in.omega[b]) * 15.0 * in.shear[i] / in.weighted_volume[i]);
+      g[b] = 15.0 * in.shear[i] / in.weighted_volume[i] * double(w[b]);
   return g;
 }
 
@@ -93,7 +96,7 @@ std::vector<Matrix3> deviatoric_basis() {
 // the energy is even in E to that order: what is left is the quadratic energy up to a relative
 // O(ε²).
 std::vector<double> deviatoric_energy(const Particles& p, const Families& f,
-                                      const std::vector<float>& g, const Matrix3& E) {
+                                      const std::vector<double>& g, const Matrix3& E) {
   std::vector<double> w(p.count(), 0.0);
   for (const double sign : {1.0, -1.0}) {
     double F[9];
@@ -107,7 +110,7 @@ std::vector<double> deviatoric_energy(const Particles& p, const Families& f,
         const double e = std::hypot(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1],
                                     y[3 * j + 2] - y[3 * i + 2]) -
                          f.reference_length[b];
-        w[i] += 0.25 * double(g[b]) * e * e * p.volume[j];
+        w[i] += 0.25 * g[b] * e * e * p.volume[j];
       }
   }
   return w;
@@ -121,7 +124,7 @@ struct RowEnergies {
   std::vector<double> strain_error;
 };
 
-RowEnergies row_energies(const Particles& p, const Families& f, const std::vector<float>& g,
+RowEnergies row_energies(const Particles& p, const Families& f, const std::vector<double>& g,
                          const std::vector<double>& shear, double eps,
                          const std::vector<Matrix3>& extra) {
   const auto D = deviatoric_basis();
@@ -204,8 +207,9 @@ TEST_P(DeviatoricCalibrationPoisson, EveryDeviatoricStrainIsExactOnCalibratedRow
   const DeviatoricCalibration cal = calibrate(p, f, in);
   const double eps = 1e-6, tolerance = kExactDeviatoricResidual + 1e-8;
   const auto extra = random_deviatoric_strains(3, eps);
-  const RowEnergies calibrated = row_energies(p, f, cal.weights, in.shear, eps, extra);
-  const RowEnergies plain = row_energies(p, f, uncalibrated(f, in), in.shear, eps, extra);
+  const RowEnergies calibrated =
+      row_energies(p, f, stiffness(f, in, cal.weights), in.shear, eps, extra);
+  const RowEnergies plain = row_energies(p, f, stiffness(f, in, in.omega), in.shear, eps, extra);
   int exact = 0, inexact = 0;
   double exact_error = 0, inexact_largest = 0, plain_largest = 0;
   for (int i = 0; i < p.count(); ++i) {
@@ -272,9 +276,9 @@ Sheet flat_sheet() {
   return sheet;
 }
 
-// Row i's g against ω_ij B_i: ρ_min ω B ≤ g ≤ ρ_max ω B up to the rounding of g to single
-// precision (2⁻²⁴ relative; 2⁻²³ allows for that of B and ρ in double), and g finite. Returns
-// the range of g / (ω B).
+// Row i's w against ω_ij: ρ_min ω ≤ w ≤ ρ_max ω up to the rounding of w to single precision
+// (2⁻²⁴ relative; 2⁻²³ allows for that of ρ in double), and w finite. Returns the range of
+// w / ω.
 std::pair<double, double> check_bounds(const Families& f, const ModelInputs& in,
                                        const DeviatoricCalibration& cal, const char* name) {
   const double rounding = std::ldexp(1.0, -23);
@@ -282,12 +286,12 @@ std::pair<double, double> check_bounds(const Families& f, const ModelInputs& in,
   int outside = 0;
   for (std::size_t i = 0; i + 1 < f.offsets.size(); ++i)
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
-      const double plain = double(in.omega[b]) * 15.0 * in.shear[i] / in.weighted_volume[i];
+      const double plain = in.omega[b];
       const double g = cal.weights[b];
       if (!(std::isfinite(g) && g >= kMinimumDeviatoricFactor * plain * (1 - rounding) &&
             g <= kMaximumDeviatoricFactor * plain * (1 + rounding)) &&
           outside++ == 0)
-        ADD_FAILURE() << name << " row " << i << " bond " << b << ": g " << g << ", omega B "
+        ADD_FAILURE() << name << " row " << i << " bond " << b << ": w " << g << ", omega "
                       << plain;
       low = std::min(low, g / plain);
       high = std::max(high, g / plain);
@@ -296,7 +300,7 @@ std::pair<double, double> check_bounds(const Families& f, const ModelInputs& in,
   int outcome[4] = {};
   for (const DeviatoricRow row : cal.rows) ++outcome[int(row)];
   std::printf(
-      "%s: %zu rows, g / (omega B) in [%.7f, %.7f]; calibrated %d, too few bonds %d, singular "
+      "%s: %zu rows, w / omega in [%.7f, %.7f]; calibrated %d, too few bonds %d, singular "
       "%d, not better %d; exact %d, largest residual %.3f\n",
       name, cal.rows.size(), low, high, outcome[0], outcome[1], outcome[2], outcome[3],
       cal.exact_rows, cal.largest_residual);
@@ -336,7 +340,7 @@ TEST(DeviatoricCalibration, WeightsArePositiveAndBounded) {
 // max |eig(A_i/2μ_i) − 1| recomputed from the weights with the strain basis as 3×3 tensors,
 // A_kl = Σ_j g_ij |ξ|² V_j (ξ̂ᵀD_kξ̂)(ξ̂ᵀD_lξ̂).
 std::vector<double> recomputed_residual(const Particles& p, const Families& f,
-                                        const std::vector<float>& g,
+                                        const std::vector<double>& g,
                                         const std::vector<double>& shear) {
   const auto D = deviatoric_basis();
   std::vector<double> residual(p.count());
@@ -347,8 +351,8 @@ std::vector<double> recomputed_residual(const Particles& p, const Families& f,
       const Eigen::Vector3d n = Eigen::Vector3d(xi[0], xi[1], xi[2]) / f.reference_length[b];
       Eigen::Matrix<double, 5, 1> a;
       for (int k = 0; k < 5; ++k) a(k) = n.dot(D[k] * n);
-      A += double(g[b]) * f.reference_length[b] * f.reference_length[b] * p.volume[f.neighbors[b]] *
-           a * a.transpose();
+      A += g[b] * f.reference_length[b] * f.reference_length[b] * p.volume[f.neighbors[b]] * a *
+           a.transpose();
     }
     residual[i] = eigen_residual(A, shear[i]);
   }
@@ -363,7 +367,8 @@ TEST(DeviatoricCalibration, ResidualMatchesRecomputation) {
     const Particles& p = scene->particles;
     const ModelInputs in = model_inputs(*scene);
     const DeviatoricCalibration cal = calibrate(p, scene->families, in);
-    const auto residual = recomputed_residual(p, scene->families, cal.weights, in.shear);
+    const auto residual = recomputed_residual(
+        p, scene->families, stiffness(scene->families, in, cal.weights), in.shear);
     int exact = 0, fallback = 0;
     double largest = 0;
     for (int i = 0; i < p.count(); ++i) {
@@ -378,10 +383,10 @@ TEST(DeviatoricCalibration, ResidualMatchesRecomputation) {
   }
 }
 
-// A row that keeps ρ ≡ 1 has today's weights bit for bit, g = fl(ω_ij B_i) with B_i = 15μ_i/m_i:
+// A row that keeps ρ ≡ 1 has the uncorrected model's weights bit for bit, w = ω:
 // a block row cut to 10 bonds (too few for 15 conditions), every row of the one-layer bar and
 // every row of the flat sheet (singular Gram matrices). The other rows of the block are unchanged
-// by the cut row, bit for bit (rows are independent). A fallback that applies ρ anyway, rounds ω B
+// by the cut row, bit for bit (rows are independent). A fallback that applies ρ anyway, rounds ρω
 // differently, or leaks one row's scratch into another fails it.
 TEST(DeviatoricCalibration, UncalibratedRowIsTheCurrentModel) {
   const Scene& scene = block(0.25);
@@ -403,7 +408,7 @@ TEST(DeviatoricCalibration, UncalibratedRowIsTheCurrentModel) {
   const ModelInputs in = model_inputs(p, fewer, scene.horizon_of_body, shear);
   const DeviatoricCalibration cal = calibrate(p, fewer, in);
   const DeviatoricCalibration whole = calibrate(p, f, model_inputs(scene));
-  const std::vector<float> plain = uncalibrated(fewer, in);
+  const std::vector<float>& plain = in.omega;
   ASSERT_EQ(cal.rows[cut], DeviatoricRow::too_few_bonds);
   for (int b = fewer.offsets[cut]; b < fewer.offsets[cut + 1]; ++b)
     EXPECT_EQ(cal.weights[b], plain[b]) << "bond " << b;
@@ -420,13 +425,13 @@ TEST(DeviatoricCalibration, UncalibratedRowIsTheCurrentModel) {
   const ModelInputs bar_in = model_inputs(bar);
   const DeviatoricCalibration bar_cal = calibrate(bar.particles, bar.families, bar_in);
   EXPECT_EQ(bar_cal.fallback_rows, bar.particles.count());
-  EXPECT_EQ(bar_cal.weights, uncalibrated(bar.families, bar_in));
+  EXPECT_EQ(bar_cal.weights, bar_in.omega);
 
   const Sheet sheet = flat_sheet();
   const ModelInputs sheet_in =
       model_inputs(sheet.particles, sheet.families, sheet.horizon, {1.0e6});
   const DeviatoricCalibration sheet_cal = calibrate(sheet.particles, sheet.families, sheet_in);
-  const std::vector<float> sheet_plain = uncalibrated(sheet.families, sheet_in);
+  const std::vector<float>& sheet_plain = sheet_in.omega;
   for (int i = 0; i < sheet.particles.count(); ++i) {
     const int bonds = sheet.families.offsets[i + 1] - sheet.families.offsets[i];
     EXPECT_EQ(sheet_cal.rows[i],

@@ -22,7 +22,8 @@ bool same_bits(double a, double b) {
   return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
-// Random bond arrays on a real family graph, with a few collapsed and zero-weight bonds.
+// Random bond arrays on a real family graph, with a few collapsed and zero-weight bonds, and
+// deviatoric weights that differ between the two rows of a pair (w_ij ≠ w_ji, as calibrated).
 struct Rows {
   explicit Rows(const Scene& scene) : families(scene.families) {
     std::mt19937 random(17);
@@ -37,6 +38,7 @@ struct Rows {
     volume = p.volume;
     for (std::size_t b = 0; b < bonds; ++b) {
       omega.push_back(static_cast<float>(b % 11 == 0 ? 0.0 : 1.0 + 0.5 * u(random)));
+      reverse_omega.push_back(static_cast<float>(b % 11 == 0 ? 0.0 : 1.0 + 0.5 * u(random)));
       weight.push_back(static_cast<float>(b % 13 == 0 ? 0.0 : u(random)));
       reverse_weight.push_back(static_cast<float>(u(random)));
       plastic.push_back(b % 3 == 0 ? 0.0 : 1e-4 * u(random));
@@ -50,12 +52,13 @@ struct Rows {
             families.neighbors.data(),
             families.reference_length.data(),
             omega.data(),
+            reverse_omega.data(),
             weight.data(),
             reverse_weight.data()};
   }
   const Families& families;
   std::vector<double> y, volume, plastic;
-  std::vector<float> omega, weight, reverse_weight;
+  std::vector<float> omega, reverse_omega, weight, reverse_weight;
   std::vector<lps::NeighbourTerms> terms;
 };
 
@@ -75,9 +78,40 @@ OrderedSums bond_order(const Rows& r, int i, const double* ep) {
     const double eV = (std::sqrt(d2) - xi) * r.volume[j];
     s.theta += row.weight[b] * eV;
     s.theta_size += std::abs(row.weight[b] * eV);
-    const double m = row.omega[b] * xi * (eV - (ep ? ep[b] * r.volume[j] : 0.0));
+    const double m = row.deviatoric[b] * xi * (eV - (ep ? ep[b] * r.volume[j] : 0.0));
     s.moment += m;
     s.moment_size += std::abs(m);
+  }
+  return s;
+}
+
+// The force pass's sum in bond order, t_ij + t_ji = c_ij D_i + c_ji D_j + w_ij (e B_i − |ξ| S_i) +
+// w_ji (e B_j − |ξ| S_j) (lps_rows.hpp) times V_j d/ℓ, with Σ|term| per component.
+struct OrderedForce {
+  double force[3], size[3];
+};
+
+OrderedForce bond_order_force(const Rows& r, int i) {
+  OrderedForce s{};
+  const lps::BondRow row = r.row(i);
+  const lps::NeighbourTerms& ti = r.terms[i];
+  for (int b = row.begin; b < row.end; ++b) {
+    const int j = row.neighbor[b];
+    const lps::NeighbourTerms& tj = r.terms[j];
+    double d[3], d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      d[k] = r.y[3 * j + k] - r.y[3 * i + k];
+      d2 += d[k] * d[k];
+    }
+    const double length = std::sqrt(d2), xi = row.reference_length[b], e = length - xi;
+    if (length == 0) continue;
+    const double t = row.weight[b] * ti.pressure + row.reverse_weight[b] * tj.pressure +
+                     row.deviatoric[b] * (e * ti.deviatoric - xi * ti.shift) +
+                     row.reverse_deviatoric[b] * (e * tj.deviatoric - xi * tj.shift);
+    for (int k = 0; k < 3; ++k) {
+      s.force[k] += t * tj.volume * d[k] / length;
+      s.size[k] += std::abs(t * tj.volume * d[k] / length);
+    }
   }
   return s;
 }
@@ -115,7 +149,7 @@ TEST(RowKernels, Avx512GivesThePortableBitsOnEveryRow) {
       // the yield test at the row's largest trial force: not past it, and just past the one below
       double largest = 0;
       for (int k = row.begin; k < row.end; ++k) {
-        const double stiffness = 2.0 * row.omega[k] * 1e3;
+        const double stiffness = 2.0 * row.deviatoric[k] * 1e3;
         const double trial =
             stiffness * (e_portable[k - row.begin] - a.theta * row.reference_length[k] / 3.0);
         if (stiffness > 0) largest = std::max(largest, std::abs(trial));
@@ -134,9 +168,13 @@ TEST(RowKernels, Avx512GivesThePortableBitsOnEveryRow) {
       simd.force(in, f_simd, &w_simd);
       portable.force(in, f_portable, &w_portable);
       simd.force(in, f_plain, nullptr);
+      const OrderedForce ordered = bond_order_force(r, i);
       for (int k = 0; k < 3; ++k) {
         ASSERT_TRUE(same_bits(f_simd[k], f_portable[k])) << "row " << i << " component " << k;
         ASSERT_TRUE(same_bits(f_simd[k], f_plain[k])) << "row " << i << " component " << k;
+        // the pair's two deviatoric weights each with its own row's terms (w_ij ≠ w_ji here)
+        EXPECT_LE(std::abs(f_portable[k] - ordered.force[k]), 1e-14 * ordered.size[k])
+            << "row " << i << " component " << k;
       }
       ASSERT_TRUE(same_bits(w_simd, w_portable)) << "row " << i;
     }
