@@ -103,10 +103,8 @@ void PureElasticKernel::sequential_forces(const double* y, double* f) {
       const double d0 = yj[0] - yi0, d1 = yj[1] - yi1, d2 = yj[2] - yi2;
       const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const NeighbourTerms& tj = terms[j];
-      const double e = length - xi[b];
-      const double t =
-          c[b] * Di + c_reverse[b] * tj.pressure +
-          omega[b] * ((e * Bi - xi[b] * Si) + (e * tj.deviatoric - xi[b] * tj.shift));  // Eqs 4, 8
+      const double deviatoric = (length - xi[b]) * (Bi + tj.deviatoric) - xi[b] * (Si + tj.shift);
+      const double t = c[b] * Di + c_reverse[b] * tj.pressure + omega[b] * deviatoric;  // Eqs 4, 8
       const double s = length > 0 ? t * tj.volume / length : 0.0;
       f0 += s * d0;
       f1 += s * d1;

@@ -197,6 +197,7 @@ void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y
   const double* ep_reverse = reverse_plastic_extension_.data();
   const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
   const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
+  const bool separate = row.reverse_deviatoric != row.deviatoric;
   double f0 = 0, f1 = 0, f2 = 0, w = 0;
   for (int b = row.begin; b < row.end; ++b) {
     const int j = row.neighbor[b];
@@ -206,10 +207,16 @@ void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y
     const double xi = row.reference_length[b];
     const double extension = length - xi;
     const NeighbourTerms& tj = terms[j];
-    const double w_ij = row.deviatoric[b], w_ji = row.reverse_deviatoric[b];
+    const double w_ij = row.deviatoric[b];
+    // the elastic kernel's terms (lps_rows_portable.cpp) with e^p taken off: with e^p = +0 the
+    // same bits
     const double deviatoric =
-        w_ij * (extension * Bi - xi * Si - Bi * ep[b]) +
-        w_ji * (extension * tj.deviatoric - xi * tj.shift - tj.deviatoric * ep_reverse[b]);
+        separate
+            ? w_ij * (extension * Bi - xi * Si - Bi * ep[b]) +
+                  double(row.reverse_deviatoric[b]) *
+                      (extension * tj.deviatoric - xi * tj.shift - tj.deviatoric * ep_reverse[b])
+            : w_ij * (extension * (Bi + tj.deviatoric) - xi * (Si + tj.shift) -
+                      (Bi * ep[b] + tj.deviatoric * ep_reverse[b]));
     const double t =
         (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) + deviatoric;
     // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.

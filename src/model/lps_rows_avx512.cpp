@@ -106,7 +106,8 @@ double moment_row(const BondRow& row, const double* extension, const double* V, 
   return reduce(moment);
 }
 
-template <bool Energy>
+// Separate: as lps_rows_portable.cpp's.
+template <bool Energy, bool Separate>
 void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
   const BondRow& row = *in.row;
   const double* terms = &in.terms[0].pressure;  // 4 doubles per particle
@@ -115,14 +116,13 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
                 Si = _mm512_set1_pd(ti.shift), elastic_theta = _mm512_set1_pd(in.elastic_theta),
                 three = _mm512_set1_pd(3.0), zero = _mm512_setzero_pd();
   __m512d f0 = zero, f1 = zero, f2 = zero, w = zero;
-  const bool separate_reverse = row.reverse_deviatoric != row.deviatoric;
   for (int b = row.begin; b < row.end; b += 8) {
     prefetch(row.reference_length + b + prefetch_distance);
     prefetch(row.neighbor + b + prefetch_distance);
     prefetch(row.weight + b + prefetch_distance);
     prefetch(row.reverse_weight + b + prefetch_distance);
     prefetch(row.deviatoric + b + prefetch_distance);
-    if (separate_reverse) prefetch(row.reverse_deviatoric + b + prefetch_distance);
+    if constexpr (Separate) prefetch(row.reverse_deviatoric + b + prefetch_distance);
     const __mmask8 m = lanes_left(b, row.end);
     const __m256i j = _mm256_maskz_loadu_epi32(m, row.neighbor + b);
     const Bonds d = bond_vectors(m, j, in.y, in.y + 3 * in.i);
@@ -134,10 +134,16 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
     const __m512d Bj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 1, 8);
     const __m512d Sj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 2, 8);
     const __m512d Vj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 3, 8);
-    const __m512d w_ij = widen(m, row.deviatoric + b), w_ji = widen(m, row.reverse_deviatoric + b);
-    const __m512d deviatoric = _mm512_add_pd(
-        _mm512_mul_pd(w_ij, _mm512_sub_pd(_mm512_mul_pd(e, Bi), _mm512_mul_pd(xi, Si))),
-        _mm512_mul_pd(w_ji, _mm512_sub_pd(_mm512_mul_pd(e, Bj), _mm512_mul_pd(xi, Sj))));
+    const __m512d w_ij = widen(m, row.deviatoric + b);
+    __m512d deviatoric;
+    if constexpr (Separate)
+      deviatoric = _mm512_add_pd(
+          _mm512_mul_pd(w_ij, _mm512_sub_pd(_mm512_mul_pd(e, Bi), _mm512_mul_pd(xi, Si))),
+          _mm512_mul_pd(widen(m, row.reverse_deviatoric + b),
+                        _mm512_sub_pd(_mm512_mul_pd(e, Bj), _mm512_mul_pd(xi, Sj))));
+    else
+      deviatoric = _mm512_mul_pd(w_ij, _mm512_sub_pd(_mm512_mul_pd(e, _mm512_add_pd(Bi, Bj)),
+                                                     _mm512_mul_pd(xi, _mm512_add_pd(Si, Sj))));
     const __m512d t =
         _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(widen(m, row.weight + b), Di),
                                     _mm512_mul_pd(widen(m, row.reverse_weight + b), Dj)),
@@ -162,10 +168,13 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
 }
 
 void force_row(const ForceRowInput& in, double force[3], double* squares) {
+  const bool separate = in.row->reverse_deviatoric != in.row->deviatoric;
   if (squares)
-    force_row_sums<true>(in, force, squares);
+    separate ? force_row_sums<true, true>(in, force, squares)
+             : force_row_sums<true, false>(in, force, squares);
   else
-    force_row_sums<false>(in, force, nullptr);
+    separate ? force_row_sums<false, true>(in, force, nullptr)
+             : force_row_sums<false, false>(in, force, nullptr);
 }
 
 bool yields(const BondRow& row, const double* extension, double B, double trial_theta,

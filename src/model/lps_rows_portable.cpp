@@ -49,7 +49,10 @@ double moment_row(const BondRow& row, const double* extension, const double* V, 
 
 // t_ij + t_ji = c_ij D_i + c_ji D_j + w_ij (e B_i − |ξ| S_i) + w_ji (e B_j − |ξ| S_j) (Eqs 4, 8,
 // 12; notes §6; w = ω uncalibrated), times V_j/ℓ along d = y_j − y_i.
-void force_row(const ForceRowInput& in, double force[3], double* squares) {
+// Separate: w_ji has its own array (calibrated); else w_ji = w_ij and the pair's deviatoric term
+// is w (e (B_i + B_j) − |ξ| (S_i + S_j)), two multiplications fewer per bond.
+template <bool Separate>
+void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
   const BondRow& row = *in.row;
   const int i = in.i;
   const double* y = in.y;
@@ -65,9 +68,11 @@ void force_row(const ForceRowInput& in, double force[3], double* squares) {
     const double xi = row.reference_length[b];
     const double e = length - xi;
     const NeighbourTerms& tj = terms[j];
-    const double w_ij = row.deviatoric[b], w_ji = row.reverse_deviatoric[b];
+    const double w_ij = row.deviatoric[b];
     const double deviatoric =
-        w_ij * (e * Bi - xi * Si) + w_ji * (e * tj.deviatoric - xi * tj.shift);
+        Separate ? w_ij * (e * Bi - xi * Si) +
+                       double(row.reverse_deviatoric[b]) * (e * tj.deviatoric - xi * tj.shift)
+                 : w_ij * (e * (Bi + tj.deviatoric) - xi * (Si + tj.shift));
     const double t =
         (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) + deviatoric;
     // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
@@ -84,6 +89,13 @@ void force_row(const ForceRowInput& in, double force[3], double* squares) {
   force[1] = reduce(f1);
   force[2] = reduce(f2);
   if (squares) *squares = reduce(w);
+}
+
+void force_row(const ForceRowInput& in, double force[3], double* squares) {
+  if (in.row->reverse_deviatoric != in.row->deviatoric)
+    force_row_sums<true>(in, force, squares);
+  else
+    force_row_sums<false>(in, force, squares);
 }
 
 bool yields(const BondRow& row, const double* extension, double B, double trial_theta,
