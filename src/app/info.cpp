@@ -22,6 +22,7 @@ void print_info(const Config& config) {
   fmt::print("bytes per bond: {} (stored per directed bond; a force evaluation reads {})\n",
              model->bytes_per_bond(), model->bytes_read_per_bond());
   fmt::print("model: {}\n", model->name());
+  for (const auto& [name, value] : model->statistics()) fmt::print("  {}: {:.6g}\n", name, value);
   fmt::print("integrator: {}\n", config.integrator.type);
   fmt::print("stable dt estimate: {:.4g} s\n", stable_dt);
   if (config.time.dt_auto)

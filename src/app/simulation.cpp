@@ -75,6 +75,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   summary_.particles = scene_.particles.count();
   summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
   summary_.stable_dt = model_->stable_time_step();
+  summary_.model_statistics = model_->statistics();
   summary_.dt = run_time_step(config, *integrator_, summary_.stable_dt);
   parts_ = std::make_unique<RunParts>(config_, scene_, *model_, *dynamics_, *post_step_,
                                       *integrator_, state_, summary_);

@@ -40,6 +40,7 @@ struct RunSummary {
   long force_evaluations = 0;  // evaluations of the model's internal forces
   std::string integrator;      // integrator.type
   std::vector<std::pair<std::string, double>> integrator_statistics;
+  std::vector<std::pair<std::string, double>> model_statistics;  // Model::statistics()
 };
 
 // Runs the scene into config.output.dir. Throws InputError for unusable input and RunError when

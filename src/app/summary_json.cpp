@@ -53,6 +53,7 @@ std::string summary_json(const RunSummary& s) {
   j["energy"] = table(s.energy);
   j["message"] = s.message;
   j["integrator_statistics"] = table(s.integrator_statistics);
+  j["model_statistics"] = table(s.model_statistics);
   return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 

@@ -433,6 +433,14 @@ void LpsModel::break_bond(int i, std::size_t b) {
   mark_changed();
 }
 
+std::vector<std::pair<std::string, double>> LpsModel::statistics() const {
+  if (bond_reverse_deviatoric_.empty()) return {};
+  return {{"deviatoric_rows", particles_.count()},
+          {"deviatoric_exact_rows", deviatoric_summary_.exact_rows},
+          {"deviatoric_fallback_rows", deviatoric_summary_.fallback_rows},
+          {"deviatoric_largest_residual", deviatoric_summary_.largest_residual}};
+}
+
 std::size_t LpsModel::bytes_per_bond() const {
   // neighbour, |ξ|, reverse index; w_ij, c_ij, c_ji, and w_ji when calibrated
   const std::size_t reverse = bond_reverse_deviatoric_.empty() ? 0 : sizeof(float);

@@ -53,6 +53,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
     double largest_residual = 0;
   };
   const DeviatoricSummary& deviatoric_summary() const { return deviatoric_summary_; }
+  // With surface_correction: full, the deviatoric calibration's summary.
+  std::vector<std::pair<std::string, double>> statistics() const override;
 
  private:
   template <bool Plastic>

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/named_arrays.hpp"
@@ -96,6 +97,9 @@ class Model {
   virtual std::size_t bytes_per_bond() const = 0;
   // Bytes of bond data one force evaluation reads per directed bond (all passes).
   virtual std::size_t bytes_read_per_bond() const = 0;
+  // What the model's set-up reached, by name (summary.json model_statistics, `fissure info`):
+  // e.g. the LPS deviatoric calibration's exact rows. Empty for most models.
+  virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
 
  protected:
   const Particles& particles_;

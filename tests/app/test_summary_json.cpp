@@ -21,6 +21,7 @@ TEST(SummaryJson, ReadsBackWithAnyMessageAndNonFiniteNumbers) {
   s.message = "cannot write 'out/a\"b\\c'\nreason:\x01 disk \xff full";
   s.energy = {{"kinetic", 1.5}, {"balance", NAN}};
   s.integrator_statistics = {{"factorizations", 3}, {"krylov_iterations", 0}};
+  s.model_statistics = {{"deviatoric_exact_rows", 12975}, {"deviatoric_largest_residual", 0.5}};
   const std::string text = summary_json(s);
   const auto j = nlohmann::ordered_json::parse(text);  // throws on invalid JSON or UTF-8
   std::vector<std::string> keys;
@@ -44,7 +45,8 @@ TEST(SummaryJson, ReadsBackWithAnyMessageAndNonFiniteNumbers) {
                                                "integrator",
                                                "energy",
                                                "message",
-                                               "integrator_statistics"};
+                                               "integrator_statistics",
+                                               "model_statistics"};
   EXPECT_EQ(keys, documented) << text;
   EXPECT_EQ(j["status"], "failed");
   EXPECT_EQ(j["steps"], 12);
@@ -56,6 +58,8 @@ TEST(SummaryJson, ReadsBackWithAnyMessageAndNonFiniteNumbers) {
   EXPECT_TRUE(j["energy"]["balance"].is_null());
   EXPECT_TRUE(j["integrator_statistics"]["factorizations"].is_number_integer());
   EXPECT_EQ(j["integrator_statistics"]["factorizations"], 3);
+  EXPECT_EQ(j["model_statistics"]["deviatoric_exact_rows"], 12975);
+  EXPECT_EQ(j["model_statistics"]["deviatoric_largest_residual"].get<double>(), 0.5);
 }
 
 }  // namespace

@@ -859,10 +859,19 @@ TEST(FullSurfaceCorrection, ConfigReadsTheThreeChoicesAndBooleans) {
     forces.emplace_back(y.size());
     model->forces(y.data(), forces.back().data());
     const auto& summary = lps(*model).deviatoric_summary();
-    if (expected == SurfaceCorrection::full)
+    const auto statistics = model->statistics();  // summary.json model_statistics
+    if (expected == SurfaceCorrection::full) {
       EXPECT_GT(summary.exact_rows, 0) << value;
-    else
+      const std::vector<std::pair<std::string, double>> reported = {
+          {"deviatoric_rows", scene.particles.count()},
+          {"deviatoric_exact_rows", summary.exact_rows},
+          {"deviatoric_fallback_rows", summary.fallback_rows},
+          {"deviatoric_largest_residual", summary.largest_residual}};
+      EXPECT_EQ(statistics, reported);
+    } else {
       EXPECT_EQ(summary.exact_rows + summary.fallback_rows, 0) << value;
+      EXPECT_TRUE(statistics.empty()) << value;
+    }
   }
   EXPECT_EQ(forces[3], forces[1]);  // true: dilatation
   EXPECT_EQ(forces[4], forces[2]);  // false: none
