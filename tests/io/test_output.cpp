@@ -373,7 +373,7 @@ TEST(Output, SummaryHasEveryDocumentedKey) {
       EXPECT_EQ(values.at(key), "\"completed\"");
     } else if (key == "integrator") {
       EXPECT_EQ(values.at(key), "\"symplectic_euler\"");
-    } else if (key == "integrator_statistics" || key == "energy") {
+    } else if (key == "integrator_statistics" || key == "model_statistics" || key == "energy") {
       EXPECT_EQ(values.at(key).front(), '{');
     } else if (key == "message") {
       EXPECT_EQ(values.at(key), "\"\"");
