@@ -45,21 +45,20 @@ double surface_stiffened_poisson_ratio(double bulk, double shear) {
   return test::poisson_ratio(bulk, factor * shear);
 }
 
-class PoissonRatio : public ::testing::TestWithParam<Material> {};
-
 // The 1.0 × 0.2 × 0.2 m beam of configs/beam_stretch.yaml at its resolution λ = 0.05 m
 // (2.8 horizons across), ends x < 0.05 and x > 0.95 held and pulled apart by 0.5 mm each
 // (axial strain 1.1e-3, linear), solved for static equilibrium (petsc_newton, scheme static).
 // The strains are fitted over the gauge |x − 0.5| ≤ 0.15 m, 1.5 widths from the grips, where
 // their restraint of the contraction has died out (Saint-Venant).
-TEST_P(PoissonRatio, LateralContractionMatchesNu) {
-  const Material m = GetParam();
+// `extra` is appended to the material map. Returns the measured ν.
+double measured_poisson_ratio(const Material& m, const std::string& extra) {
   const double pull = 5e-4;
   const Scene scene =
       test::block_scene({.size = {1, 0.2, 0.2},
                          .resolution = 0.05,
                          .bulk = m.bulk,
                          .shear = m.shear,
+                         .material = extra,
                          .scene = fmt::format("constraints:\n"
                                               "  - {{region: {{box: {{min: [-1, -1, -1], max: "
                                               "[0.05, 1, 1]}}}}, velocity: [{}, 0, 0]}}\n"
@@ -86,6 +85,16 @@ TEST_P(PoissonRatio, LateralContractionMatchesNu) {
       "after the documented surface effect %.4f (difference %+.4f)\n",
       m.bulk, m.shear, p.count(), gauge.size(), axial, lateral, nu, expected, nu - expected,
       surface, surface - expected);
+  return nu;
+}
+
+class PoissonRatio : public ::testing::TestWithParam<Material> {};
+
+TEST_P(PoissonRatio, LateralContractionMatchesNu) {
+  const Material m = GetParam();
+  const double nu = measured_poisson_ratio(m, "");
+  const double expected = test::poisson_ratio(m.bulk, m.shear);
+  const double surface = surface_stiffened_poisson_ratio(m.bulk, m.shear);
   // Sign: a family cut by a free surface stiffens the deviatoric response and leaves κ exact,
   // so μ_eff > μ and ν = (3κ − 2μ)/(2(3κ + μ)) falls (dν/dμ < 0): ν may only lie below theory.
   EXPECT_LT(nu, expected);
@@ -100,6 +109,25 @@ TEST_P(PoissonRatio, LateralContractionMatchesNu) {
 
 // κ = 2.0 MPa; μ = 2.2, 0.92, 0.15 MPa: ν = 0.10, 0.30, 0.46 (configs/beam_stretch.yaml).
 INSTANTIATE_TEST_SUITE_P(Figure9, PoissonRatio,
+                         ::testing::Values(Material{2.0e6, 2.2e6, "nu_0_10"},
+                                           Material{2.0e6, 9.2e5, "nu_0_30"},
+                                           Material{2.0e6, 1.5e5, "nu_0_46"}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// With the deviatoric calibration (surface_correction: full, docs/model.md deviation 8) every
+// homogeneous strain is exact on the particles that can be, the surface stiffening is gone, and
+// ν is within issue 15's 0.02 of theory (measured −0.008, −0.010, −0.005: what is left is the
+// grips' restraint and the inexact edge rows). A calibration that did nothing gives the table
+// above (0.043 low for the first material) and fails.
+class PoissonRatioFull : public ::testing::TestWithParam<Material> {};
+
+TEST_P(PoissonRatioFull, LateralContractionMatchesNu) {
+  const Material m = GetParam();
+  const double nu = measured_poisson_ratio(m, ", surface_correction: full");
+  EXPECT_NEAR(nu, test::poisson_ratio(m.bulk, m.shear), 0.02);
+}
+
+INSTANTIATE_TEST_SUITE_P(Figure9, PoissonRatioFull,
                          ::testing::Values(Material{2.0e6, 2.2e6, "nu_0_10"},
                                            Material{2.0e6, 9.2e5, "nu_0_30"},
                                            Material{2.0e6, 1.5e5, "nu_0_46"}),
