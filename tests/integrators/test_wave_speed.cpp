@@ -14,14 +14,16 @@ namespace {
 // The end x < 0.03 is pushed at constant velocity v0. Behind the front a probe's mean
 // displacement grows as v0 (t − x/c), so fitting a line to u(t) once the front has passed and
 // extrapolating to u = 0 gives the arrival time; c comes from two probes' arrival times, which
-// cancels the time the front needs to form. E = 9κμ/(3κ + μ).
-TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
+// cancels the time the front needs to form. E = 9κμ/(3κ + μ). `extra` is appended to the
+// material map; returns the measured speed over c.
+double wave_speed_ratio(const std::string& extra) {
   const double bulk = 5e6, shear = 5e6, density = 1000;
   const Scene scene = test::block_scene({.size = {1.5, 0.05, 0.05},
                                          .resolution = 0.0125,
                                          .bulk = bulk,
                                          .shear = shear,
                                          .density = density,
+                                         .material = extra,
                                          .scene = "constraints:\n"
                                                   "  - {region: {box: {min: [-1, -1, -1], max: "
                                                   "[0.03, 1, 1]}}, velocity: [0.01, 0, 0]}\n"});
@@ -64,7 +66,7 @@ TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
         st += times[k], su += u[p][k], stt += times[k] * times[k], stu += times[k] * u[p][k];
         ++n;
       }
-    ASSERT_GT(n, 10);
+    EXPECT_GT(n, 10);
     const double slope = (n * stu - st * su) / (n * stt - st * st);
     const double intercept = (su - slope * st) / n;
     arrival[p] = -intercept / slope;
@@ -74,11 +76,23 @@ TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
   const double measured = (probes[1] - probes[0]) / (arrival[1] - arrival[0]);
   std::printf("wave speed %.2f m/s, sqrt(E/rho) = %.2f m/s, ratio %.4f\n", measured, c,
               measured / c);
+  return measured / c;
+}
+
+TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
+  const double ratio = wave_speed_ratio("");
   // The bar is 2.8 horizons across, where the surface effect stiffens it in uniaxial stress:
   // E_eff < 1.10 E (test SurfaceEffect; 1.096 in docs/model.md), never softer. So the speed lies
   // between √(E/ρ) and √(1.10 E/ρ) = 1.049 c.
-  EXPECT_GT(measured / c, 1.0);
-  EXPECT_LT(measured / c, std::sqrt(1.10));
+  EXPECT_GT(ratio, 1.0);
+  EXPECT_LT(ratio, std::sqrt(1.10));
+}
+
+// With the deviatoric calibration (surface_correction: full, docs/model.md deviation 8) the
+// surface stiffening is gone: within issue 15's 1.5% of √(E/ρ) (measured 0.991: the bar's four
+// edges keep inexact rows). The `dilatation` model's 1.040 fails it.
+TEST(WaveSpeed, FullSurfaceCorrectionTravelsAtBarSpeed) {
+  EXPECT_NEAR(wave_speed_ratio(", surface_correction: full"), 1.0, 0.015);
 }
 
 }  // namespace
