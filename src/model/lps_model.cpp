@@ -74,8 +74,10 @@ void LpsModel::calibrate_deviatoric_weights() {
       deviatoric_weights(particles_, families_, bond_deviatoric_, materials_.shear_modulus,
                          weighted_volume_, shape_of_body);
   bond_deviatoric_ = std::move(calibration.weights);
-  deviatoric_summary_ = {calibration.exact_rows, calibration.fallback_rows,
-                         calibration.largest_residual};
+  statistics_ = {{"deviatoric_rows", n},
+                 {"deviatoric_exact_rows", calibration.exact_rows},
+                 {"deviatoric_fallback_rows", calibration.fallback_rows},
+                 {"deviatoric_largest_residual", calibration.largest_residual}};
   const auto& off = families_.offsets;
   const auto& xi = families_.reference_length;
   bond_reverse_deviatoric_.resize(bond_deviatoric_.size());
@@ -196,7 +198,7 @@ void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y
   const double* ep = plastic_extension_.data();
   const double* ep_reverse = reverse_plastic_extension_.data();
   const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-  const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
+  const NeighbourTerms& ti = terms[i];
   const bool separate = row.reverse_deviatoric != row.deviatoric;
   double f0 = 0, f1 = 0, f2 = 0, w = 0;
   for (int b = row.begin; b < row.end; ++b) {
@@ -207,18 +209,15 @@ void LpsModel::plastic_force_row(const lps::BondRow& row, int i, const double* y
     const double xi = row.reference_length[b];
     const double extension = length - xi;
     const NeighbourTerms& tj = terms[j];
-    const double w_ij = row.deviatoric[b];
-    // the elastic kernel's terms (lps_rows_portable.cpp) with e^p taken off: with e^p = +0 the
-    // same bits
+    const double w_ij = row.deviatoric[b], w_ji = row.reverse_deviatoric[b];
+    // the elastic kernel's term with e^p taken off: with e^p = +0 the same bits
     const double deviatoric =
         separate
-            ? w_ij * (extension * Bi - xi * Si - Bi * ep[b]) +
-                  double(row.reverse_deviatoric[b]) *
-                      (extension * tj.deviatoric - xi * tj.shift - tj.deviatoric * ep_reverse[b])
-            : w_ij * (extension * (Bi + tj.deviatoric) - xi * (Si + tj.shift) -
-                      (Bi * ep[b] + tj.deviatoric * ep_reverse[b]));
+            ? lps::pair_deviatoric<true>(extension, xi, w_ij, w_ji, ti, tj, ep[b], ep_reverse[b])
+            : lps::pair_deviatoric<false>(extension, xi, w_ij, w_ji, ti, tj, ep[b], ep_reverse[b]);
     const double t =
-        (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) + deviatoric;
+        (double(row.weight[b]) * ti.pressure + double(row.reverse_weight[b]) * tj.pressure) +
+        deviatoric;
     // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
     const double s = length > 0 ? t * tj.volume / length : 0.0;
     f0 += s * d0;
@@ -431,14 +430,6 @@ void LpsModel::break_bond(int i, std::size_t b) {
   bond_weight_[b] = 0;
   bond_reverse_weight_[b] = 0;
   mark_changed();
-}
-
-std::vector<std::pair<std::string, double>> LpsModel::statistics() const {
-  if (bond_reverse_deviatoric_.empty()) return {};
-  return {{"deviatoric_rows", particles_.count()},
-          {"deviatoric_exact_rows", deviatoric_summary_.exact_rows},
-          {"deviatoric_fallback_rows", deviatoric_summary_.fallback_rows},
-          {"deviatoric_largest_residual", deviatoric_summary_.largest_residual}};
 }
 
 std::size_t LpsModel::bytes_per_bond() const {

@@ -47,14 +47,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void assemble_scalar_stiffness(SparseSymmetric& L) const override;
   double forces_and_energy(const double* y, double* f) override;
   double rows_energy(const double* y, const std::vector<int>& rows) override;
-  // What the deviatoric calibration reached (surface_correction: full; zeros otherwise).
-  struct DeviatoricSummary {
-    int exact_rows = 0, fallback_rows = 0;
-    double largest_residual = 0;
-  };
-  const DeviatoricSummary& deviatoric_summary() const { return deviatoric_summary_; }
-  // With surface_correction: full, the deviatoric calibration's summary.
-  std::vector<std::pair<std::string, double>> statistics() const override;
+  // With surface_correction: full, what the deviatoric calibration reached; else empty.
+  std::vector<std::pair<std::string, double>> statistics() const override { return statistics_; }
 
  private:
   template <bool Plastic>
@@ -103,7 +97,7 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   std::vector<float> bond_reverse_weight_;      // c_ji, the weight of the same bond in j's row
   // M_i = Σ_j w_ij |ξ_ij|² V_j over the intact bonds (m_i of notes §6 while w = ω)
   std::vector<double> weighted_volume_;
-  DeviatoricSummary deviatoric_summary_;
+  std::vector<std::pair<std::string, double>> statistics_;
   std::vector<double> dilatation_;  // θ_i, scratch of each evaluation at its y
   // What the force pass gathers from each neighbour j: pressure D_j = κθ_j − (B_j/3) Σ_k w ê |ξ|
   // V_k and shift B_j (θ_j − θ^p_j)/3 per force call, deviatoric B_j and volume V_j.

@@ -24,6 +24,23 @@ struct NeighbourTerms {
   double pressure, deviatoric, shift, volume;
 };
 
+// The pair's deviatoric bond force density t^d_ij + t^d_ji = w_ij B_i ê_ij + w_ji B_j ê_ji (Eqs 8,
+// 12; notes §6) with B ê = e B − |ξ| S − B e^p: w_ij (e B_i − |ξ| S_i − B_i e^p_ij) + w_ji (…), or,
+// where the pair has one weight (not Separate: w_ji = w_ij), w (e (B_i + B_j) − |ξ| (S_i + S_j) −
+// (B_i e^p_ij + B_j e^p_ji)), two multiplications fewer. e^p = +0 subtracts +0, which leaves the
+// bits of the same term without it (the AVX-512 kernel's).
+template <bool Separate>
+inline double pair_deviatoric(double e, double xi, double w_ij, double w_ji,
+                              const NeighbourTerms& ti, const NeighbourTerms& tj, double ep_ij,
+                              double ep_ji) {
+  if constexpr (Separate)
+    return w_ij * (e * ti.deviatoric - xi * ti.shift - ti.deviatoric * ep_ij) +
+           w_ji * (e * tj.deviatoric - xi * tj.shift - tj.deviatoric * ep_ji);
+  else
+    return w_ij * (e * (ti.deviatoric + tj.deviatoric) - xi * (ti.shift + tj.shift) -
+                   (ti.deviatoric * ep_ij + tj.deviatoric * ep_ji));
+}
+
 struct DilatationSums {
   double theta;   // θ_i = Σ_j c_ij e_ij V_j (Eq 6)
   double moment;  // Σ_j w_ij |ξ| (e_ij − e^p_ij) V_j

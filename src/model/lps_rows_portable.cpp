@@ -49,8 +49,7 @@ double moment_row(const BondRow& row, const double* extension, const double* V, 
 
 // t_ij + t_ji = c_ij D_i + c_ji D_j + w_ij (e B_i − |ξ| S_i) + w_ji (e B_j − |ξ| S_j) (Eqs 4, 8,
 // 12; notes §6; w = ω uncalibrated), times V_j/ℓ along d = y_j − y_i.
-// Separate: w_ji has its own array (calibrated); else w_ji = w_ij and the pair's deviatoric term
-// is w (e (B_i + B_j) − |ξ| (S_i + S_j)), two multiplications fewer per bond.
+// Separate: w_ji has its own array (calibrated); else w_ji = w_ij (pair_deviatoric).
 template <bool Separate>
 void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
   const BondRow& row = *in.row;
@@ -58,7 +57,7 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
   const double* y = in.y;
   const NeighbourTerms* terms = in.terms;
   const double yi0 = y[3 * i], yi1 = y[3 * i + 1], yi2 = y[3 * i + 2];
-  const double Di = terms[i].pressure, Bi = terms[i].deviatoric, Si = terms[i].shift;
+  const NeighbourTerms& ti = terms[i];
   double f0[lanes] = {}, f1[lanes] = {}, f2[lanes] = {}, w[lanes] = {};
   for (int b = row.begin; b < row.end; ++b) {
     const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
@@ -69,12 +68,9 @@ void force_row_sums(const ForceRowInput& in, double force[3], double* squares) {
     const double e = length - xi;
     const NeighbourTerms& tj = terms[j];
     const double w_ij = row.deviatoric[b];
-    const double deviatoric =
-        Separate ? w_ij * (e * Bi - xi * Si) +
-                       double(row.reverse_deviatoric[b]) * (e * tj.deviatoric - xi * tj.shift)
-                 : w_ij * (e * (Bi + tj.deviatoric) - xi * (Si + tj.shift));
     const double t =
-        (double(row.weight[b]) * Di + double(row.reverse_weight[b]) * tj.pressure) + deviatoric;
+        (double(row.weight[b]) * ti.pressure + double(row.reverse_weight[b]) * tj.pressure) +
+        pair_deviatoric<Separate>(e, xi, w_ij, row.reverse_deviatoric[b], ti, tj, 0, 0);
     // n = d / |d|; a collapsed bond (|d| = 0) has no direction and carries no force.
     const double s = length > 0 ? t * tj.volume / length : 0.0;
     f0[lane] += s * d0;

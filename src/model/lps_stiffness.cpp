@@ -44,14 +44,15 @@ double LpsModel::pair_force(int i, std::size_t b, double length) const {
   const NeighbourTerms& ti = terms_[i];
   const NeighbourTerms& tj = terms_[j];
   const double xi = families_.reference_length[b];
-  const double e = length - xi;
-  double own = e * ti.deviatoric - xi * ti.shift, other = e * tj.deviatoric - xi * tj.shift;
-  if (plastic_) {
-    own -= ti.deviatoric * plastic_extension_[b];
-    other -= tj.deviatoric * plastic_extension_[families_.reverse[b]];
-  }
-  const double t = bond_weight_[b] * ti.pressure + bond_reverse_weight_[b] * tj.pressure +
-                   bond_deviatoric_[b] * own + reverse_deviatoric()[b] * other;
+  const double e = length - xi, w_ij = bond_deviatoric_[b], w_ji = reverse_deviatoric()[b];
+  const double ep_ij = plastic_ ? plastic_extension_[b] : 0.0;
+  const double ep_ji = plastic_ ? plastic_extension_[families_.reverse[b]] : 0.0;
+  const double deviatoric =
+      bond_reverse_deviatoric_.empty()
+          ? lps::pair_deviatoric<false>(e, xi, w_ij, w_ji, ti, tj, ep_ij, ep_ji)
+          : lps::pair_deviatoric<true>(e, xi, w_ij, w_ji, ti, tj, ep_ij, ep_ji);
+  const double t =
+      bond_weight_[b] * ti.pressure + bond_reverse_weight_[b] * tj.pressure + deviatoric;
   return ti.volume * tj.volume * t;
 }
 
@@ -200,6 +201,7 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
   const auto& rev = families_.reverse;
   const auto& xi = families_.reference_length;
   const auto& V = particles_.volume;
+  const float* w_reverse = reverse_deviatoric();
   // Per family: Σ_j c̄_ij n_ij and Σ_j w_ij n_ij; per bond: n and ℓ.
   std::vector<Vec> sum_c(n), sum_w(n);
   std::vector<BondGeometry> geometry(families_.directed_bonds());
@@ -230,9 +232,9 @@ void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_
       for (int b = off[r]; b < off[r + 1]; ++b) {
         const int s = nbr[b];
         const BondGeometry& g = geometry[b];
-        const double k = V[r] * V[s] *
-                         (terms_[r].deviatoric * bond_deviatoric_[b] +
-                          terms_[s].deviatoric * reverse_deviatoric()[b]);
+        const double k =
+            V[r] * V[s] *
+            (terms_[r].deviatoric * bond_deviatoric_[b] + terms_[s].deviatoric * w_reverse[b]);
         const double p = g.length > 0 ? pair_force(r, b, g.length) : 0.0;
         scatter_bond(K, r, block_of[r], block_of[s], g.n, k,
                      (clamp_compression ? std::max(p, 0.0) : p) / std::max(g.length, 1e-300));

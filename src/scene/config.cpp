@@ -281,23 +281,6 @@ std::shared_ptr<const Options> read_part_options(
   return parser->parse(OptionReader(r, node, path));
 }
 
-// none | dilatation | full; a YAML boolean (the key's values before `full`) means dilatation or
-// none, as it did.
-SurfaceCorrection read_surface_correction(const YamlReader& r, const YAML::Node& node,
-                                          const std::string& path) {
-  const std::string value = r.string(node, path);
-  const std::vector<std::pair<std::string, SurfaceCorrection>> choices = {
-      {"none", SurfaceCorrection::none},
-      {"dilatation", SurfaceCorrection::dilatation},
-      {"full", SurfaceCorrection::full}};
-  for (const auto& [name, choice] : choices)
-    if (name == value) return choice;
-  bool enabled = false;
-  if (YAML::convert<bool>::decode(node, enabled))
-    return enabled ? SurfaceCorrection::dilatation : SurfaceCorrection::none;
-  r.fail(path, unknown_choice("surface_correction", value, {"none", "dilatation", "full"}));
-}
-
 Material read_material(const YamlReader& r, const YAML::Node& node, const std::string& path) {
   r.require_map(node, path);
   Material m;
@@ -315,9 +298,18 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
   m.density = r.positive(node["density"], join(path, "density"));
   m.bulk_modulus = r.positive(node["bulk_modulus"], join(path, "bulk_modulus"));
   m.shear_modulus = r.positive(node["shear_modulus"], join(path, "shear_modulus"));
-  if (node["surface_correction"])
-    m.surface_correction =
-        read_surface_correction(r, node["surface_correction"], join(path, "surface_correction"));
+  // none | dilatation | full; a YAML boolean, the key's form before `full`, means dilatation or
+  // none as it did
+  bool corrected = false;
+  if (node["surface_correction"] &&
+      YAML::convert<bool>::decode(node["surface_correction"], corrected))
+    m.surface_correction = corrected ? SurfaceCorrection::dilatation : SurfaceCorrection::none;
+  else
+    m.surface_correction = OptionReader(r, node, path)
+                               .choice("surface_correction", m.surface_correction,
+                                       {{"none", SurfaceCorrection::none},
+                                        {"dilatation", SurfaceCorrection::dilatation},
+                                        {"full", SurfaceCorrection::full}});
   if (node["fracture"]) m.fracture = read_fracture(r, node["fracture"], join(path, "fracture"));
   if (node["anisotropy"])
     m.anisotropy = read_anisotropy(r, node["anisotropy"], join(path, "anisotropy"));
