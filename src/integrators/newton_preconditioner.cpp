@@ -57,7 +57,8 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   return particles <= 10000 ? P::tangent : particles <= 30000 ? P::majoriser : P::scalar;
 }
 
-NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options)
+NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
+                                           PetscNewtonSettings::FactorPrecision precision)
     : system_(system), kind_(kind), options_(options) {
   const Families& families = system.dynamics().model().families();
   switch (kind) {
@@ -77,7 +78,6 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
       throw RunError("NewtonPreconditioner: choose a kind first");
   }
   diagonal_ = diagonal_positions(matrix_);
-  create_petsc_matrix(matrix_, kind == Kind::scalar ? 1 : 3);
   petsc_check(PCCreate(PETSC_COMM_SELF, &pc_), "PCCreate");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc_), options_), "options");
   petsc_check(PCSetOptionsPrefix(pc_, "precond_"), "PCSetOptionsPrefix");
@@ -87,8 +87,24 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
     petsc_check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
     petsc_check(PCFactorSetMatSolverType(pc_, MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
   }
-  petsc_check(PCSetOperators(pc_, petsc_matrix_, petsc_matrix_), "PCSetOperators");
   petsc_check(PCSetFromOptions(pc_), "PCSetFromOptions");
+  PCType type;
+  petsc_check(PCGetType(pc_, &type), "PCGetType");
+  MatSolverType solver = nullptr;
+  if (std::strcmp(type, PCCHOLESKY) == 0)
+    petsc_check(PCFactorGetMatSolverType(pc_, &solver), "PCFactorGetMatSolverType");
+  if (solver && std::strcmp(solver, MATSOLVERCHOLMOD) == 0) {
+    // PETSc's own CHOLMOD Cholesky, as by default: made and solved here instead.
+    cholesky_ = std::make_unique<SupernodalCholesky>(
+        precision == PetscNewtonSettings::FactorPrecision::single
+            ? SupernodalCholesky::Precision::single
+            : SupernodalCholesky::Precision::full);
+    if (kind == Kind::scalar)
+      component_in_.resize(matrix_.rows), component_out_.resize(matrix_.rows);
+    return;
+  }
+  create_petsc_matrix(matrix_, kind == Kind::scalar ? 1 : 3);
+  petsc_check(PCSetOperators(pc_, petsc_matrix_, petsc_matrix_), "PCSetOperators");
   if (kind == Kind::scalar) {
     petsc_check(VecCreateSeq(PETSC_COMM_SELF, matrix_.rows, &component_), "VecCreateSeq");
     petsc_check(VecDuplicate(component_, &component_solution_), "VecDuplicate");
@@ -145,6 +161,11 @@ void NewtonPreconditioner::refresh(const double* z) {
       break;
   }
   ++assemblies;
+  if (cholesky_) {
+    if (!cholesky_->factorize(matrix_)) throw not_positive_definite();
+    ++factorizations;
+    return;
+  }
   PetscScalar* values;
   petsc_check(MatSeqAIJGetArray(petsc_matrix_, &values), "MatSeqAIJGetArray");
   std::memcpy(values, matrix_.values.data(), matrix_.values.size() * sizeof(double));
@@ -173,14 +194,37 @@ void NewtonPreconditioner::refresh(const double* z) {
     // would fail too. The next refresh analyses the pattern afresh.
     petsc_check(PCReset(pc_), "PCReset");
     petsc_check(PCSetOperators(pc_, petsc_matrix_, petsc_matrix_), "PCSetOperators");
-    throw RunError(fmt::format("the {} preconditioner's {}×{} matrix is not positive definite",
-                               preconditioner_name(kind_), matrix_.rows, matrix_.rows));
+    throw not_positive_definite();
   }
   ++factorizations;
 }
 
+RunError NewtonPreconditioner::not_positive_definite() const {
+  return RunError(fmt::format("the {} preconditioner's {}×{} matrix is not positive definite",
+                              preconditioner_name(kind_), matrix_.rows, matrix_.rows));
+}
+
 void NewtonPreconditioner::apply(Vec r, Vec x) {
   ++back_solves;
+  if (cholesky_) {
+    const PetscScalar* in;
+    PetscScalar* out;
+    petsc_check(VecGetArrayRead(r, &in), "VecGetArrayRead");
+    petsc_check(VecGetArray(x, &out), "VecGetArray");
+    if (kind_ != Kind::scalar) {
+      cholesky_->solve(in, out);
+    } else {
+      const int n = matrix_.rows;
+      for (int d = 0; d < 3; ++d) {
+        for (int i = 0; i < n; ++i) component_in_[i] = in[3 * i + d];
+        cholesky_->solve(component_in_.data(), component_out_.data());
+        for (int i = 0; i < n; ++i) out[3 * i + d] = component_out_[i];
+      }
+    }
+    petsc_check(VecRestoreArray(x, &out), "VecRestoreArray");
+    petsc_check(VecRestoreArrayRead(r, &in), "VecRestoreArrayRead");
+    return;
+  }
   if (kind_ != Kind::scalar) {
     petsc_check(PCApply(pc_, r, x), "PCApply");
     return;
@@ -209,7 +253,18 @@ void NewtonPreconditioner::view(PetscViewer viewer) const {
   petsc_check(PetscViewerASCIIPrintf(viewer, "Fissure preconditioner: %s (refreshed %ld times)\n",
                                      preconditioner_name(kind_), factorizations),
               "PetscViewerASCIIPrintf");
-  if (factorizations > 0) petsc_check(PCView(pc_, viewer), "PCView");
+  if (cholesky_) {
+    petsc_check(
+        PetscViewerASCIIPrintf(
+            viewer,
+            "  CHOLMOD supernodal factor kept in %s precision: %ld entries, %d subtrees "
+            "over %d threads\n",
+            cholesky_->precision() == SupernodalCholesky::Precision::single ? "single" : "double",
+            cholesky_->factor_entries(), cholesky_->subtrees(), cholesky_->threads()),
+        "PetscViewerASCIIPrintf");
+  } else if (factorizations > 0) {
+    petsc_check(PCView(pc_, viewer), "PCView");
+  }
 }
 
 }  // namespace fissure

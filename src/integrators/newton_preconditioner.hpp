@@ -8,18 +8,25 @@
 //              N×N, CHOLMOD, applied to the three components;
 //   gamg:      PETSc's algebraic multigrid on the majoriser, rigid-body modes as near null space.
 // The inner PETSc PC reads the options prefixed `precond_` (e.g. -precond_pc_gamg_threshold).
+// While it stays PETSc's CHOLMOD Cholesky (the default), the factor is made and solved by
+// SupernodalCholesky instead, in the precision `factor_precision` asks for.
 #include <petscpc.h>
 
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "core/error.hpp"
 #include "integrators/newton_system.hpp"
+#include "linear/supernodal_cholesky.hpp"
 
 namespace fissure {
 
 class NewtonPreconditioner {
  public:
   using Kind = PetscNewtonSettings::Preconditioner;
-  NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options);
+  NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
+                       PetscNewtonSettings::FactorPrecision precision);
   ~NewtonPreconditioner();
   NewtonPreconditioner(const NewtonPreconditioner&) = delete;
   NewtonPreconditioner& operator=(const NewtonPreconditioner&) = delete;
@@ -33,6 +40,8 @@ class NewtonPreconditioner {
   void bonds_changed() { scalar_assembled_ = false; }
   void view(PetscViewer viewer) const;
   Kind kind() const { return kind_; }
+  // The factor SupernodalCholesky keeps, or nullptr when PETSc's PC makes it.
+  const SupernodalCholesky* cholesky() const { return cholesky_.get(); }
   // Whether the factor depends on the point it is made at: the scalar one depends on A and the
   // bonds only, so a refresh for slow convergence would rebuild the same factor.
   bool follows_the_state() const { return kind_ != Kind::scalar; }
@@ -40,6 +49,7 @@ class NewtonPreconditioner {
 
  private:
   void create_petsc_matrix(const SparseSymmetric& a, int block_size);
+  RunError not_positive_definite() const;
 
   NewtonSystem& system_;
   Kind kind_;
@@ -50,7 +60,9 @@ class NewtonPreconditioner {
   bool scalar_assembled_ = false;
   Mat petsc_matrix_ = nullptr;
   PC pc_ = nullptr;
-  Vec component_ = nullptr, component_solution_ = nullptr;  // scalar: one component, N
+  std::unique_ptr<SupernodalCholesky> cholesky_;
+  mutable std::vector<double> component_in_, component_out_;  // scalar with cholesky_: N
+  Vec component_ = nullptr, component_solution_ = nullptr;    // scalar: one component, N
 };
 
 // The preconditioner `auto` picks for a scene of these families (docs/integrators.md).

@@ -237,7 +237,8 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   if (kind == P::automatic) kind = choose_preconditioner(families);
   if (kind == P::tangent && s.system.tangent() == NewtonSystem::Tangent::majoriser)
     kind = P::majoriser;
-  s.preconditioner = std::make_unique<NewtonPreconditioner>(s.system, kind, s.options);
+  s.preconditioner =
+      std::make_unique<NewtonPreconditioner>(s.system, kind, s.options, settings.factor_precision);
   K krylov = settings.krylov;
   if (krylov == K::automatic) krylov = kind == P::tangent ? K::none : K::cg;
   s.krylov = krylov != K::none;

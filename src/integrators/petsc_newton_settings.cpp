@@ -33,6 +33,8 @@ const std::vector<std::pair<std::string, S::Krylov>> kKrylov = {{"auto", S::Kryl
                                                                 {"none", S::Krylov::none},
                                                                 {"cg", S::Krylov::cg},
                                                                 {"gmres", S::Krylov::gmres}};
+const std::vector<std::pair<std::string, S::FactorPrecision>> kFactorPrecisions = {
+    {"single", S::FactorPrecision::single}, {"double", S::FactorPrecision::full}};
 
 // A whole number from 1 to 1e6 (the refresh limits).
 int refresh_limit(const OptionReader& r, const std::string& key, int fallback) {
@@ -54,6 +56,7 @@ const std::vector<std::string>& petsc_newton_keys() {
                                                 "petsc_options",
                                                 "max_step_halvings",
                                                 "preconditioner",
+                                                "factor_precision",
                                                 "krylov",
                                                 "refresh_contraction",
                                                 "refresh_iterations",
@@ -69,6 +72,7 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
   s->tangent = r.choice("tangent", s->tangent, kTangents);
   s->preconditioner = r.choice("preconditioner", s->preconditioner, kPreconditioners);
   s->krylov = r.choice("krylov", s->krylov, kKrylov);
+  s->factor_precision = r.choice("factor_precision", s->factor_precision, kFactorPrecisions);
   if (s->tangent == S::Tangent::majoriser && s->preconditioner == S::Preconditioner::tangent)
     r.fail("preconditioner",
            "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "

@@ -25,6 +25,10 @@ struct PetscNewtonSettings final : IntegratorOptions {
   // algebraic multigrid on the majoriser (PETSc GAMG); auto by size.
   enum class Preconditioner { automatic, tangent, majoriser, scalar, gamg };
   Preconditioner preconditioner = Preconditioner::automatic;
+  // The precision a CHOLMOD factor is kept and back-solved in: single halves the bytes each
+  // back-solve reads; the Newton or Krylov iteration around it corrects the rounding.
+  enum class FactorPrecision { single, full };
+  FactorPrecision factor_precision = FactorPrecision::single;
   // The linear solver around it: none (modified Newton: the factor alone), cg or gmres on the
   // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
   enum class Krylov { automatic, none, cg, gmres };

@@ -192,5 +192,46 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
   }
 }
 
+// The factor kept in single precision (the default) against double: the Newton or Krylov
+// iteration around the back-solve corrects its rounding (relative 3e-7 per solve,
+// test_supernodal_cholesky.cpp), so both stop within the Newton tolerance of the same minimiser
+// (the 1e-7 of the motion above) in about the same iterations. The last variant leaves the
+// factor to PETSc's own Cholesky (any -precond_pc_* choice other than CHOLMOD does).
+TEST(FactorReuse, SinglePrecisionFactorGivesTheTrajectoryOfTheDoubleOne) {
+  using P = PetscNewtonSettings::Preconditioner;
+  using F = PetscNewtonSettings::FactorPrecision;
+  auto v = test::make_vibration();
+  const double dt = 20 * v->stable_dt;
+  struct Variant {
+    const char* label;
+    const char* scheme;
+    P preconditioner;
+    const char* options;
+  };
+  for (const Variant& c : {Variant{"backward Euler, tangent", "backward_euler", P::tangent, ""},
+                           Variant{"sdirk4, tangent", "sdirk4", P::tangent, ""},
+                           Variant{"newmark, scalar+cg", "newmark", P::scalar, " -ksp_rtol 1e-12"},
+                           Variant{"sdirk4, PETSc's Cholesky", "sdirk4", P::tangent,
+                                   " -precond_pc_factor_mat_solver_type petsc"}}) {
+    PetscNewtonSettings full = newton(c.scheme);
+    full.preconditioner = c.preconditioner;
+    full.petsc_options += c.options;
+    full.factor_precision = F::full;
+    PetscNewtonSettings single = full;
+    single.factor_precision = F::single;
+    const Trajectory a = simulate(*v, single, 20, dt);
+    const Trajectory b = simulate(*v, full, 20, dt);
+    const double difference = test::max_difference(a.position, b.position);
+    const double iterations = test::statistic(*a.integrator, "newton_iterations");
+    const double iterations_double = test::statistic(*b.integrator, "newton_iterations");
+    std::printf(
+        "%s: single vs double factor: max |dy| = %.2e of the motion, Newton iterations "
+        "%.0f vs %.0f\n",
+        c.label, difference / reach(*v, b.position), iterations, iterations_double);
+    EXPECT_LT(difference, 1e-7 * reach(*v, b.position)) << c.label;
+    EXPECT_LE(iterations, 1.1 * iterations_double) << c.label;
+  }
+}
+
 }  // namespace
 }  // namespace fissure

@@ -91,16 +91,17 @@ TEST(Config, NewtonSolverKeys) {
   using K = PetscNewtonSettings::Krylov;
   EXPECT_EQ(petsc_newton(d).preconditioner, P::automatic);
   EXPECT_EQ(petsc_newton(d).krylov, K::automatic);
+  EXPECT_EQ(petsc_newton(d).factor_precision, PetscNewtonSettings::FactorPrecision::single);
   EXPECT_TRUE(petsc_newton(d).reuse_factor);
   EXPECT_DOUBLE_EQ(petsc_newton(d).refresh_contraction, 0.25);
   EXPECT_EQ(petsc_newton(d).refresh_iterations, 6);
   EXPECT_EQ(petsc_newton(d).refresh_krylov, 40);
-  const Config c =
-      parse_config(kMinimal, "scene.yaml",
-                   {"integrator.type=petsc_newton", "integrator.scheme=sdirk4",
-                    "integrator.preconditioner=gamg", "integrator.krylov=gmres",
-                    "integrator.reuse_factor=false", "integrator.refresh_contraction=0.5",
-                    "integrator.refresh_iterations=3", "integrator.refresh_krylov=100"});
+  const Config c = parse_config(
+      kMinimal, "scene.yaml",
+      {"integrator.type=petsc_newton", "integrator.scheme=sdirk4", "integrator.preconditioner=gamg",
+       "integrator.krylov=gmres", "integrator.reuse_factor=false",
+       "integrator.refresh_contraction=0.5", "integrator.refresh_iterations=3",
+       "integrator.refresh_krylov=100", "integrator.factor_precision=double"});
   EXPECT_EQ(petsc_newton(c).scheme, PetscNewtonSettings::Scheme::sdirk4);
   EXPECT_EQ(petsc_newton(c).preconditioner, P::gamg);
   EXPECT_EQ(petsc_newton(c).krylov, K::gmres);
@@ -108,9 +109,11 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_DOUBLE_EQ(petsc_newton(c).refresh_contraction, 0.5);
   EXPECT_EQ(petsc_newton(c).refresh_iterations, 3);
   EXPECT_EQ(petsc_newton(c).refresh_krylov, 100);
+  EXPECT_EQ(petsc_newton(c).factor_precision, PetscNewtonSettings::FactorPrecision::full);
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"integrator.preconditioner=ilu", "integrator.preconditioner"},
       {"integrator.krylov=bicg", "integrator.krylov"},
+      {"integrator.factor_precision=half", "integrator.factor_precision"},
       {"integrator.refresh_contraction=1", "integrator.refresh_contraction: must be in (0, 1)"},
       {"integrator.refresh_iterations=2.5", "integrator.refresh_iterations: must be a whole"},
       {"integrator.scheme=sdirk5", "integrator.scheme"}};

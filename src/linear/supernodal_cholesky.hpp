@@ -1,0 +1,63 @@
+#pragma once
+// Sparse Cholesky for a reused preconditioner factor: CHOLMOD's supernodal factorization
+// P A Pᵀ = L Lᵀ in double, then its values kept in single precision (or double) and solved by
+// this class over the OpenMP threads: independent subtrees of the supernodal elimination tree
+// side by side, and the rows of each supernode above them split. A back-solve reads every entry
+// of L twice and is bound by memory bandwidth (docs/accuracy.md, "Cost against size"), so single
+// precision halves it; the Newton or Krylov iteration around the solve corrects its rounding,
+// as it corrects a stale factor's. Only the kept copy stays: CHOLMOD's double factor is freed.
+#include <cholmod.h>
+
+#include <vector>
+
+#include "linear/sparse_symmetric.hpp"
+
+namespace fissure {
+
+class SupernodalCholesky {
+ public:
+  enum class Precision { single, full };
+  explicit SupernodalCholesky(Precision precision);
+  ~SupernodalCholesky();
+  SupernodalCholesky(const SupernodalCholesky&) = delete;
+  SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
+
+  // Numeric factorization of A (its pattern analysed on the first call and kept). False when A
+  // is not positive definite (the next call analyses afresh); RunError when CHOLMOD fails.
+  bool factorize(const SparseSymmetric& A);
+  // x = A⁻¹ b with the kept factor (b and x may be the same array).
+  void solve(const double* b, double* x) const;
+
+  // Entries of L as stored (supernodes hold their dense blocks), and the bytes one solve reads.
+  long factor_entries() const { return static_cast<long>(entries_); }
+  double solve_bytes() const;
+  // The work split the last factorization chose (see below).
+  int subtrees() const { return static_cast<int>(subtree_first_.size()); }
+  int top_supernodes() const { return static_cast<int>(top_.size()); }
+  int threads() const { return threads_; }
+  Precision precision() const { return precision_; }
+
+ private:
+  template <typename Real>
+  void solve_with(const std::vector<Real>& values, const double* b, double* x) const;
+  void keep(const cholmod_factor& factor);
+  void schedule(int threads);
+
+  Precision precision_;
+  cholmod_common common_{};
+  cholmod_factor* symbolic_ = nullptr;  // the analysis of A's pattern, kept
+  bool factored_ = false;
+  std::size_t entries_ = 0;
+  std::vector<float> single_;  // L's values in the precision solved with
+  std::vector<double> full_;
+  // The supernodal structure of L (CHOLMOD's arrays).
+  std::vector<long> super_, row_start_, value_start_, rows_, permutation_;
+  // Work split: subtree k is the supernodes [subtree_first_[k], subtree_last_[k]] (postorder
+  // keeps a subtree contiguous), solved by thread subtree_thread_[k]; top_ are the supernodes
+  // above every subtree, solved one at a time with their rows split over the threads.
+  std::vector<long> subtree_first_, subtree_last_, top_;
+  std::vector<int> subtree_thread_;
+  int threads_ = 1;
+};
+
+}  // namespace fissure
