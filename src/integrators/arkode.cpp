@@ -124,7 +124,8 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
       arkode_check(ARKStepSetMaxNumSteps(s.memory, -1), "ARKStepSetMaxNumSteps");
       if (s.implicit_rhs) {
         s.reduced = std::make_unique<ReducedNewtonSystem>(
-            dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov);
+            dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov,
+            settings_.factor_precision);
         s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get(), &s.error);
         arkode_check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr),
                      "ARKStepSetLinearSolver");

@@ -1,6 +1,7 @@
 #include "integrators/arkode_linear_solver.hpp"
 
 #include <arkode/arkode_arkstep.h>
+#include <fmt/format.h>
 #include <nvector/nvector_serial.h>
 
 #include <cmath>
@@ -14,12 +15,13 @@ namespace fissure {
 
 ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory,
                                          const std::vector<double>& origin, bool reuse,
-                                         int krylov_limit)
+                                         int krylov_limit, FactorPrecision precision)
     : dynamics_(dynamics),
       arkode_memory_(arkode_memory),
       origin_(origin),
       reuse_(reuse),
       krylov_limit_(krylov_limit),
+      factor_(precision),
       cg_(origin.size()) {
   stiffness_ = two_hop_pattern(dynamics.model().families());
   system_ = stiffness_;
@@ -89,7 +91,10 @@ void ReducedNewtonSystem::factorize(double gamma) {
   auto attempt = [&] {
     system_.values = stiffness_.values;
     shift_and_fix(system_, diagonal_, mass_, (1 + gamma * c) / (gamma * gamma), fixed_);
-    factor_.factorize(system_);
+    if (!factor_.factorize(system_))
+      throw RunError(fmt::format("CHOLMOD: the {}×{} system matrix is not positive definite",
+                                 system_.rows, system_.rows));
+    ++factorizations_;
   };
   try {
     attempt();
@@ -227,7 +232,7 @@ bool ReducedNewtonSystem::solve_by_cg(double gamma, double tol, double* dy) {
 }
 
 void ReducedNewtonSystem::append_statistics(Statistics& stats) const {
-  stats.push_back({"factorizations", double(factor_.factorizations())});
+  stats.push_back({"factorizations", double(factorizations_)});
   stats.push_back({"back_solves", double(back_solves_)});
   stats.push_back({"krylov_iterations", double(krylov_iterations_)});
   stats.push_back({"tangent_products", double(tangent_products_)});

@@ -24,9 +24,9 @@
 #include "integrators/dynamics.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/refresh_reasons.hpp"
-#include "linear/cholmod_factor.hpp"
 #include "linear/conjugate_gradient.hpp"
 #include "linear/sparse_symmetric.hpp"
+#include "linear/supernodal_cholesky.hpp"
 
 namespace fissure {
 
@@ -35,7 +35,7 @@ class ReducedNewtonSystem {
   // origin: y0, the positions ARKODE's displacement unknowns are measured from. reuse and
   // krylov_limit: integrator.reuse_factor and integrator.refresh_krylov.
   ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory, const std::vector<double>& origin,
-                      bool reuse, int krylov_limit);
+                      bool reuse, int krylov_limit, FactorPrecision precision);
   // x = (I − γJ)⁻¹ b, with ‖b − (I − γJ)x‖₂ ≤ tol where CG is used (solve_by_cg). ARKODE 6.4
   // does not call setup for a matrix-embedded solver, so the matrix is refreshed here: at the
   // first solve, after bonds broke and as the reuse policy says.
@@ -85,7 +85,8 @@ class ReducedNewtonSystem {
   SparseSymmetric system_;            // S with held unknowns taken out
   std::vector<int> diagonal_;
   std::vector<double> mass_;  // per unknown
-  CholmodFactor factor_;
+  SupernodalCholesky factor_;
+  long factorizations_ = 0;
   ConjugateGradient cg_;
   // The stage: ARKODE's t and predicted positions, which unknowns are held, its solves.
   double stage_time_ = 0;

@@ -4,18 +4,21 @@
 
 #include <cmath>
 
+#include "integrators/petsc_newton_settings.hpp"
+
 namespace fissure {
 
 const std::vector<std::string>& arkode_keys() {
-  // The last two are petsc_newton's too (petsc_newton_settings.cpp).
-  static const std::vector<std::string> keys = {"method",     "rtol",         "atol",
-                                                "fixed_step", "reuse_factor", "refresh_krylov"};
+  // The last three are petsc_newton's too (petsc_newton_settings.cpp).
+  static const std::vector<std::string> keys = {
+      "method", "rtol", "atol", "fixed_step", "reuse_factor", "refresh_krylov", "factor_precision"};
   return keys;
 }
 
 std::shared_ptr<const IntegratorOptions> read_arkode_settings(const OptionReader& r) {
   auto s = std::make_shared<ArkodeSettings>();
   s->reuse_factor = r.boolean("reuse_factor", s->reuse_factor);
+  s->factor_precision = read_factor_precision(r, s->factor_precision);
   if (r.has("refresh_krylov")) {
     const double v = r.positive("refresh_krylov", 0);
     if (v != std::floor(v) || v > 1e6)

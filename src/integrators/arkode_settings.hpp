@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "integrators/arkode_methods.hpp"
+#include "linear/factor_precision.hpp"
 #include "scene/option_parsers.hpp"
 
 namespace fissure {
@@ -19,6 +20,7 @@ struct ArkodeSettings final : IntegratorOptions {
   // the bar swing at 857 and 7,761 particles (docs/integrators.md).
   bool reuse_factor = false;
   int refresh_krylov = 40;  // refresh when one linear solve needs more Krylov iterations
+  FactorPrecision factor_precision = FactorPrecision::single;  // of the kept CHOLMOD factor
 };
 
 // The keys under integrator: that are arkode's own, and their parser.

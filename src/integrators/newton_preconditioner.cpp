@@ -58,7 +58,7 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
 }
 
 NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
-                                           PetscNewtonSettings::FactorPrecision precision)
+                                           FactorPrecision precision)
     : system_(system), kind_(kind), options_(options) {
   const Families& families = system.dynamics().model().families();
   switch (kind) {
@@ -95,10 +95,7 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
     petsc_check(PCFactorGetMatSolverType(pc_, &solver), "PCFactorGetMatSolverType");
   if (solver && std::strcmp(solver, MATSOLVERCHOLMOD) == 0) {
     // PETSc's own CHOLMOD Cholesky, as by default: made and solved here instead.
-    cholesky_ = std::make_unique<SupernodalCholesky>(
-        precision == PetscNewtonSettings::FactorPrecision::single
-            ? SupernodalCholesky::Precision::single
-            : SupernodalCholesky::Precision::full);
+    cholesky_ = std::make_unique<SupernodalCholesky>(precision);
     if (kind == Kind::scalar)
       component_in_.resize(matrix_.rows), component_out_.resize(matrix_.rows);
     return;
@@ -254,14 +251,14 @@ void NewtonPreconditioner::view(PetscViewer viewer) const {
                                      preconditioner_name(kind_), factorizations),
               "PetscViewerASCIIPrintf");
   if (cholesky_) {
-    petsc_check(
-        PetscViewerASCIIPrintf(
-            viewer,
-            "  CHOLMOD supernodal factor kept in %s precision: %ld entries, %d subtrees "
-            "over %d threads\n",
-            cholesky_->precision() == SupernodalCholesky::Precision::single ? "single" : "double",
-            cholesky_->factor_entries(), cholesky_->subtrees(), cholesky_->threads()),
-        "PetscViewerASCIIPrintf");
+    petsc_check(PetscViewerASCIIPrintf(
+                    viewer,
+                    "  CHOLMOD supernodal factor kept in %s precision: %ld entries; solved on %d "
+                    "threads as %d subtrees side by side and %d supernodes above them\n",
+                    cholesky_->precision() == FactorPrecision::single ? "single" : "double",
+                    cholesky_->factor_entries(), cholesky_->threads(), cholesky_->subtrees(),
+                    cholesky_->top_supernodes()),
+                "PetscViewerASCIIPrintf");
   } else if (factorizations > 0) {
     petsc_check(PCView(pc_, viewer), "PCView");
   }

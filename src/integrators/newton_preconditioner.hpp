@@ -26,7 +26,7 @@ class NewtonPreconditioner {
  public:
   using Kind = PetscNewtonSettings::Preconditioner;
   NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
-                       PetscNewtonSettings::FactorPrecision precision);
+                       FactorPrecision precision);
   ~NewtonPreconditioner();
   NewtonPreconditioner(const NewtonPreconditioner&) = delete;
   NewtonPreconditioner& operator=(const NewtonPreconditioner&) = delete;

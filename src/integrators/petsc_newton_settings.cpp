@@ -33,8 +33,6 @@ const std::vector<std::pair<std::string, S::Krylov>> kKrylov = {{"auto", S::Kryl
                                                                 {"none", S::Krylov::none},
                                                                 {"cg", S::Krylov::cg},
                                                                 {"gmres", S::Krylov::gmres}};
-const std::vector<std::pair<std::string, S::FactorPrecision>> kFactorPrecisions = {
-    {"single", S::FactorPrecision::single}, {"double", S::FactorPrecision::full}};
 
 // A whole number from 1 to 1e6 (the refresh limits).
 int refresh_limit(const OptionReader& r, const std::string& key, int fallback) {
@@ -47,8 +45,14 @@ int refresh_limit(const OptionReader& r, const std::string& key, int fallback) {
 
 }  // namespace
 
+FactorPrecision read_factor_precision(const OptionReader& r, FactorPrecision fallback) {
+  static const std::vector<std::pair<std::string, FactorPrecision>> names = {
+      {"single", FactorPrecision::single}, {"double", FactorPrecision::full}};
+  return r.choice("factor_precision", fallback, names);
+}
+
 const std::vector<std::string>& petsc_newton_keys() {
-  // The last two are arkode's too (arkode_settings.cpp): the factor reuse of both.
+  // The last three are arkode's too (arkode_settings.cpp): the factor reuse of both.
   static const std::vector<std::string> keys = {"scheme",
                                                 "rho_infinity",
                                                 "steps",
@@ -56,12 +60,12 @@ const std::vector<std::string>& petsc_newton_keys() {
                                                 "petsc_options",
                                                 "max_step_halvings",
                                                 "preconditioner",
-                                                "factor_precision",
                                                 "krylov",
                                                 "refresh_contraction",
                                                 "refresh_iterations",
                                                 "reuse_factor",
-                                                "refresh_krylov"};
+                                                "refresh_krylov",
+                                                "factor_precision"};
   return keys;
 }
 
@@ -72,7 +76,7 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
   s->tangent = r.choice("tangent", s->tangent, kTangents);
   s->preconditioner = r.choice("preconditioner", s->preconditioner, kPreconditioners);
   s->krylov = r.choice("krylov", s->krylov, kKrylov);
-  s->factor_precision = r.choice("factor_precision", s->factor_precision, kFactorPrecisions);
+  s->factor_precision = read_factor_precision(r, s->factor_precision);
   if (s->tangent == S::Tangent::majoriser && s->preconditioner == S::Preconditioner::tangent)
     r.fail("preconditioner",
            "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "linear/factor_precision.hpp"
 #include "scene/option_parsers.hpp"
 
 namespace fissure {
@@ -27,7 +28,6 @@ struct PetscNewtonSettings final : IntegratorOptions {
   Preconditioner preconditioner = Preconditioner::automatic;
   // The precision a CHOLMOD factor is kept and back-solved in: single halves the bytes each
   // back-solve reads; the Newton or Krylov iteration around it corrects the rounding.
-  enum class FactorPrecision { single, full };
   FactorPrecision factor_precision = FactorPrecision::single;
   // The linear solver around it: none (modified Newton: the factor alone), cg or gmres on the
   // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
@@ -40,6 +40,9 @@ struct PetscNewtonSettings final : IntegratorOptions {
 
   int load_increments() const override { return scheme == Scheme::static_equilibrium ? steps : 0; }
 };
+
+// integrator.factor_precision (petsc_newton's and arkode's): `single` or `double`.
+FactorPrecision read_factor_precision(const OptionReader& r, FactorPrecision fallback);
 
 // The keys under integrator: that are petsc_newton's own, and their parser.
 const std::vector<std::string>& petsc_newton_keys();

@@ -1,6 +1,9 @@
 #pragma once
-// Sparse Cholesky with CHOLMOD (through Eigen's interface) for a matrix of fixed pattern: the
-// symbolic analysis once, a numeric factorization whenever the values change.
+// Sparse Cholesky with CHOLMOD (through Eigen's interface), factorized and solved by CHOLMOD
+// itself in double: the reference SupernodalCholesky (supernodal_cholesky.hpp, what the
+// integrators use) is checked and timed against (test_supernodal_cholesky.cpp,
+// bench_factor_solve). The symbolic analysis once, a numeric factorization whenever the values
+// change.
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 

@@ -56,7 +56,7 @@ double assign(const std::vector<long>& roots, const std::vector<double>& work, i
 
 }  // namespace
 
-SupernodalCholesky::SupernodalCholesky(Precision precision) : precision_(precision) {
+SupernodalCholesky::SupernodalCholesky(FactorPrecision precision) : precision_(precision) {
   if (!cholmod_start(&common_)) throw RunError("CHOLMOD: cholmod_start failed");
   common_.supernodal = CHOLMOD_SUPERNODAL;
   common_.print = 0;  // failures are reported by the exceptions below
@@ -126,7 +126,7 @@ void SupernodalCholesky::keep(const cholmod_factor& factor) {
   permutation_.assign(perm, perm + factor.n);
   entries_ = factor.xsize;
   const auto* x = static_cast<const double*>(factor.x);
-  if (precision_ == Precision::single) {
+  if (precision_ == FactorPrecision::single) {
     single_.assign(x, x + entries_);
   } else {
     full_.assign(x, x + entries_);
@@ -212,13 +212,13 @@ void SupernodalCholesky::schedule(int threads) {
 }
 
 double SupernodalCholesky::solve_bytes() const {
-  const double value = precision_ == Precision::single ? sizeof(float) : sizeof(double);
+  const double value = precision_ == FactorPrecision::single ? sizeof(float) : sizeof(double);
   return 2 * value * static_cast<double>(entries_);
 }
 
 void SupernodalCholesky::solve(const double* b, double* x) const {
   if (!factored_) throw RunError("SupernodalCholesky: solve before a successful factorization");
-  if (precision_ == Precision::single) {
+  if (precision_ == FactorPrecision::single) {
     solve_with(single_, b, x);
   } else {
     solve_with(full_, b, x);

@@ -10,14 +10,14 @@
 
 #include <vector>
 
+#include "linear/factor_precision.hpp"
 #include "linear/sparse_symmetric.hpp"
 
 namespace fissure {
 
 class SupernodalCholesky {
  public:
-  enum class Precision { single, full };
-  explicit SupernodalCholesky(Precision precision);
+  explicit SupernodalCholesky(FactorPrecision precision);
   ~SupernodalCholesky();
   SupernodalCholesky(const SupernodalCholesky&) = delete;
   SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
@@ -35,7 +35,7 @@ class SupernodalCholesky {
   int subtrees() const { return static_cast<int>(subtree_first_.size()); }
   int top_supernodes() const { return static_cast<int>(top_.size()); }
   int threads() const { return threads_; }
-  Precision precision() const { return precision_; }
+  FactorPrecision precision() const { return precision_; }
 
  private:
   template <typename Real>
@@ -43,7 +43,7 @@ class SupernodalCholesky {
   void keep(const cholmod_factor& factor);
   void schedule(int threads);
 
-  Precision precision_;
+  FactorPrecision precision_;
   cholmod_common common_{};
   cholmod_factor* symbolic_ = nullptr;  // the analysis of A's pattern, kept
   bool factored_ = false;

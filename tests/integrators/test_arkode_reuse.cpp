@@ -158,7 +158,8 @@ TEST(ArkodeFactorReuse, EverySolveMeetsArkodesToleranceOnTheCurrentStageSystem) 
   void* memory = ARKStepCreate(nullptr, implicit_rhs, 0.0, u, context);
   ASSERT_NE(memory, nullptr);
   checked.memory = memory;
-  ReducedNewtonSystem reduced(*v->dynamics, memory, checked.origin, true, 40);
+  ReducedNewtonSystem reduced(*v->dynamics, memory, checked.origin, true, 40,
+                              FactorPrecision::single);
   std::exception_ptr error;
   checked.inner = make_reduced_linear_solver(context, &reduced, &error);
   SUNLinearSolver wrapper = SUNLinSolNewEmpty(context);

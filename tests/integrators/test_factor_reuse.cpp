@@ -199,7 +199,7 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
 // factor to PETSc's own Cholesky (any -precond_pc_* choice other than CHOLMOD does).
 TEST(FactorReuse, SinglePrecisionFactorGivesTheTrajectoryOfTheDoubleOne) {
   using P = PetscNewtonSettings::Preconditioner;
-  using F = PetscNewtonSettings::FactorPrecision;
+  using F = FactorPrecision;
   auto v = test::make_vibration();
   const double dt = 20 * v->stable_dt;
   struct Variant {

@@ -20,7 +20,7 @@
 namespace fissure {
 namespace {
 
-using Precision = SupernodalCholesky::Precision;
+using Precision = FactorPrecision;
 
 // The two-hop tangent of an elastic block at rest plus a mass shift, as an SDIRK stage at a few
 // hundred times the explicit step makes it.

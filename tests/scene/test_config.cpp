@@ -91,7 +91,7 @@ TEST(Config, NewtonSolverKeys) {
   using K = PetscNewtonSettings::Krylov;
   EXPECT_EQ(petsc_newton(d).preconditioner, P::automatic);
   EXPECT_EQ(petsc_newton(d).krylov, K::automatic);
-  EXPECT_EQ(petsc_newton(d).factor_precision, PetscNewtonSettings::FactorPrecision::single);
+  EXPECT_EQ(petsc_newton(d).factor_precision, FactorPrecision::single);
   EXPECT_TRUE(petsc_newton(d).reuse_factor);
   EXPECT_DOUBLE_EQ(petsc_newton(d).refresh_contraction, 0.25);
   EXPECT_EQ(petsc_newton(d).refresh_iterations, 6);
@@ -109,7 +109,7 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_DOUBLE_EQ(petsc_newton(c).refresh_contraction, 0.5);
   EXPECT_EQ(petsc_newton(c).refresh_iterations, 3);
   EXPECT_EQ(petsc_newton(c).refresh_krylov, 100);
-  EXPECT_EQ(petsc_newton(c).factor_precision, PetscNewtonSettings::FactorPrecision::full);
+  EXPECT_EQ(petsc_newton(c).factor_precision, FactorPrecision::full);
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"integrator.preconditioner=ilu", "integrator.preconditioner"},
       {"integrator.krylov=bicg", "integrator.krylov"},
@@ -123,12 +123,17 @@ TEST(Config, NewtonSolverKeys) {
   }
   const std::string other = error_of(kMinimal, {"integrator.preconditioner=scalar"});
   EXPECT_NE(other.find("is an option of petsc_newton"), std::string::npos) << other;
-  // arkode reads the two keys of factor reuse (docs/integrators.md); explicit types do not.
-  const Config a = parse_config(
-      kMinimal, "scene.yaml",
-      {"integrator.type=arkode", "integrator.reuse_factor=false", "integrator.refresh_krylov=7"});
+  // arkode reads the three keys of factor reuse (docs/integrators.md); explicit types do not.
+  const Config a =
+      parse_config(kMinimal, "scene.yaml",
+                   {"integrator.type=arkode", "integrator.reuse_factor=false",
+                    "integrator.refresh_krylov=7", "integrator.factor_precision=double"});
   EXPECT_FALSE(arkode(a).reuse_factor);
   EXPECT_EQ(arkode(a).refresh_krylov, 7);
+  EXPECT_EQ(arkode(a).factor_precision, FactorPrecision::full);
+  EXPECT_EQ(
+      arkode(parse_config(kMinimal, "scene.yaml", {"integrator.type=arkode"})).factor_precision,
+      FactorPrecision::single);
   // arkode's reuse is opt-in (it did not pay where measured); petsc_newton's is on (above).
   EXPECT_FALSE(
       arkode(parse_config(kMinimal, "scene.yaml", {"integrator.type=arkode"})).reuse_factor);
