@@ -15,6 +15,10 @@ namespace fissure {
 
 namespace {
 
+// A supernode's rows are split over the threads only from this many entries below its diagonal
+// block (128 KB in single precision): below it a parallel region costs more than it saves.
+constexpr long kSplitEntries = 1L << 15;
+
 // The dense kernels of one supernode, in the precision of its values.
 void lower_solve(CBLAS_TRANSPOSE t, long n, const float* a, long lda, float* x) {
   cblas_strsv(CblasColMajor, CblasLower, t, CblasNonUnit, n, a, lda, x, 1);
@@ -291,7 +295,8 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
     const long lda = below + columns;
     const Real* block = values.data() + value_start_[k];
     lower_solve(CblasNoTrans, columns, block, lda, y.data() + c0);
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(threads_) \
+    schedule(static) if (below * columns >= kSplitEntries)
     for (int t = 0; t < threads_; ++t) {
       const long a = below * t / threads_, b = below * (t + 1) / threads_;
       if (a == b) continue;
@@ -306,7 +311,8 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
     const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
     const long lda = below + columns;
     const Real* block = values.data() + value_start_[k];
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(threads_) \
+    schedule(static) if (below * columns >= kSplitEntries)
     for (int t = 0; t < threads_; ++t) {
       const long a = below * t / threads_, b = below * (t + 1) / threads_;
       Real* sum = partial.data() + static_cast<std::size_t>(t) * widest;
