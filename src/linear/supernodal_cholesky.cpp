@@ -271,7 +271,7 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
   const bool both = !top_.empty() && !subtree_first_.empty();
   std::vector<std::vector<Real>> outside(threads_, std::vector<Real>(both ? n : 0));
   std::vector<Real> tmp(widest);
-#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+#pragma omp parallel num_threads(threads_) if (threads_ > 1 && !subtree_first_.empty())
   {
     const int t = omp_get_thread_num();
     std::vector<Real> own(widest);
@@ -327,7 +327,7 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
         y[c0 + c] -= partial[static_cast<std::size_t>(t) * widest + c];
     lower_solve(CblasTrans, columns, block, lda, y.data() + c0);
   }
-#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+#pragma omp parallel num_threads(threads_) if (threads_ > 1 && !subtree_first_.empty())
   {
     const int t = omp_get_thread_num();
     std::vector<Real> own(widest);
