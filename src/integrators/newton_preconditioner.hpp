@@ -61,8 +61,8 @@ class NewtonPreconditioner {
   Mat petsc_matrix_ = nullptr;
   PC pc_ = nullptr;
   std::unique_ptr<SupernodalCholesky> cholesky_;
-  mutable std::vector<double> component_in_, component_out_;  // scalar with cholesky_: N
-  Vec component_ = nullptr, component_solution_ = nullptr;    // scalar: one component, N
+  std::vector<double> component_in_, component_out_;        // scalar with cholesky_: N
+  Vec component_ = nullptr, component_solution_ = nullptr;  // scalar: one component, N
 };
 
 // The preconditioner `auto` picks for a scene of these families (docs/integrators.md).

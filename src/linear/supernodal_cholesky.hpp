@@ -3,7 +3,7 @@
 // P A Pᵀ = L Lᵀ in double, then its values kept in single precision (or double) and solved by
 // this class over the OpenMP threads: independent subtrees of the supernodal elimination tree
 // side by side, and the rows of each supernode above them split. A back-solve reads every entry
-// of L twice and is bound by memory bandwidth (docs/accuracy.md, "Cost against size"), so single
+// of L twice and is bound by memory bandwidth (docs/integrators.md, "The linear solves"), so single
 // precision halves it; the Newton or Krylov iteration around the solve corrects its rounding,
 // as it corrects a stale factor's. Only the kept copy stays: CHOLMOD's double factor is freed.
 #include <cholmod.h>
