@@ -88,6 +88,11 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
     symbolic_ = cholmod_analyze(&view, &common_);
     check_cholmod(common_, "cholmod_analyze");
     if (!symbolic_) throw RunError("CHOLMOD: cholmod_analyze failed");
+    if (!symbolic_->is_super)
+      throw RunError("CHOLMOD: cholmod_analyze did not return a supernodal analysis");
+    // The structure and the work split follow from the pattern: kept until it is analysed again.
+    keep_structure(*symbolic_);
+    schedule(omp_get_max_threads());
   }
   // The numeric factor lives only until its values are copied: the double factor is not kept.
   cholmod_factor* factor = cholmod_copy_factor(symbolic_, &common_);
@@ -98,8 +103,9 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
   set_blas_threads(1);
   const int status = common_.status;
   const bool definite = ok && status != CHOLMOD_NOT_POSDEF && factor->minor >= factor->n;
-  const bool supernodal = factor->is_super && factor->is_ll && factor->xtype == CHOLMOD_REAL;
-  if (definite && supernodal) keep(*factor);
+  const bool supernodal = factor->is_super && factor->is_ll && factor->xtype == CHOLMOD_REAL &&
+                          factor->xsize == entries_;
+  if (definite && supernodal) keep_values(*factor);
   cholmod_free_factor(&factor, &common_);
   if (status < 0) {
     cholmod_free_factor(&symbolic_, &common_);
@@ -110,13 +116,13 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
     factored_ = false;
     return false;
   }
-  if (!supernodal) throw RunError("CHOLMOD: cholmod_factorize did not return a supernodal factor");
+  if (!supernodal)
+    throw RunError("CHOLMOD: cholmod_factorize did not return the analysed supernodal factor");
   factored_ = true;
-  schedule(omp_get_max_threads());
   return true;
 }
 
-void SupernodalCholesky::keep(const cholmod_factor& factor) {
+void SupernodalCholesky::keep_structure(const cholmod_factor& factor) {
   const auto* super = static_cast<const int*>(factor.super);
   const auto* pi = static_cast<const int*>(factor.pi);
   const auto* px = static_cast<const int*>(factor.px);
@@ -129,6 +135,12 @@ void SupernodalCholesky::keep(const cholmod_factor& factor) {
   rows_.assign(s, s + row_start_.back());
   permutation_.assign(perm, perm + factor.n);
   entries_ = factor.xsize;
+  widest_ = 0;
+  for (long k = 0; k < supernodes; ++k)
+    widest_ = std::max(widest_, row_start_[k + 1] - row_start_[k]);
+}
+
+void SupernodalCholesky::keep_values(const cholmod_factor& factor) {
   const auto* x = static_cast<const double*>(factor.x);
   if (precision_ == FactorPrecision::single) {
     single_.assign(x, x + entries_);
@@ -235,9 +247,7 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
   const long n = static_cast<long>(permutation_.size());
   std::vector<Real> y(n);
   for (long k = 0; k < n; ++k) y[k] = static_cast<Real>(b[permutation_[k]]);  // P b
-  long widest = 0;
-  for (std::size_t k = 0; k + 1 < row_start_.size(); ++k)
-    widest = std::max(widest, row_start_[k + 1] - row_start_[k]);
+  const long widest = widest_;
 
   // L z = P b, supernode by supernode: the diagonal block's triangle, then the rows below it.
   // Updates of rows outside the running subtree (the supernodes above it) go to the thread's

@@ -31,7 +31,7 @@ class SupernodalCholesky {
   // Entries of L as stored (supernodes hold their dense blocks), and the bytes one solve reads.
   long factor_entries() const { return static_cast<long>(entries_); }
   double solve_bytes() const;
-  // The work split the last factorization chose (see below).
+  // The work split chosen when the pattern was analysed (see below).
   int subtrees() const { return static_cast<int>(subtree_first_.size()); }
   int top_supernodes() const { return static_cast<int>(top_.size()); }
   int threads() const { return threads_; }
@@ -40,7 +40,8 @@ class SupernodalCholesky {
  private:
   template <typename Real>
   void solve_with(const std::vector<Real>& values, const double* b, double* x) const;
-  void keep(const cholmod_factor& factor);
+  void keep_structure(const cholmod_factor& factor);
+  void keep_values(const cholmod_factor& factor);
   void schedule(int threads);
 
   FactorPrecision precision_;
@@ -50,8 +51,9 @@ class SupernodalCholesky {
   std::size_t entries_ = 0;
   std::vector<float> single_;  // L's values in the precision solved with
   std::vector<double> full_;
-  // The supernodal structure of L (CHOLMOD's arrays).
+  // The supernodal structure of L (CHOLMOD's arrays), and the most rows of a supernode.
   std::vector<long> super_, row_start_, value_start_, rows_, permutation_;
+  long widest_ = 0;
   // Work split: subtree k is the supernodes [subtree_first_[k], subtree_last_[k]] (postorder
   // keeps a subtree contiguous), solved by thread subtree_thread_[k]; top_ are the supernodes
   // above every subtree, solved one at a time with their rows split over the threads.
