@@ -78,6 +78,7 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
       throw RunError("NewtonPreconditioner: choose a kind first");
   }
   diagonal_ = diagonal_positions(matrix_);
+  if (kind == Kind::scalar) component_in_.resize(matrix_.rows), component_out_.resize(matrix_.rows);
   petsc_check(PCCreate(PETSC_COMM_SELF, &pc_), "PCCreate");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc_), options_), "options");
   petsc_check(PCSetOptionsPrefix(pc_, "precond_"), "PCSetOptionsPrefix");
@@ -96,15 +97,17 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
   if (solver && std::strcmp(solver, MATSOLVERCHOLMOD) == 0) {
     // PETSc's own CHOLMOD Cholesky, as by default: made and solved here instead.
     cholesky_ = std::make_unique<SupernodalCholesky>(precision);
-    if (kind == Kind::scalar)
-      component_in_.resize(matrix_.rows), component_out_.resize(matrix_.rows);
     return;
   }
   create_petsc_matrix(matrix_, kind == Kind::scalar ? 1 : 3);
   petsc_check(PCSetOperators(pc_, petsc_matrix_, petsc_matrix_), "PCSetOperators");
   if (kind == Kind::scalar) {
-    petsc_check(VecCreateSeq(PETSC_COMM_SELF, matrix_.rows, &component_), "VecCreateSeq");
-    petsc_check(VecDuplicate(component_, &component_solution_), "VecDuplicate");
+    petsc_check(
+        VecCreateSeqWithArray(PETSC_COMM_SELF, 1, matrix_.rows, component_in_.data(), &component_),
+        "VecCreateSeqWithArray");
+    petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, matrix_.rows, component_out_.data(),
+                                      &component_solution_),
+                "VecCreateSeqWithArray");
   }
 }
 
@@ -203,44 +206,33 @@ RunError NewtonPreconditioner::not_positive_definite() const {
 
 void NewtonPreconditioner::apply(Vec r, Vec x) {
   ++back_solves;
-  if (cholesky_) {
-    const PetscScalar* in;
-    PetscScalar* out;
-    petsc_check(VecGetArrayRead(r, &in), "VecGetArrayRead");
-    petsc_check(VecGetArray(x, &out), "VecGetArray");
-    if (kind_ != Kind::scalar) {
-      cholesky_->solve(in, out);
-    } else {
-      const int n = matrix_.rows;
-      for (int d = 0; d < 3; ++d) {
-        for (int i = 0; i < n; ++i) component_in_[i] = in[3 * i + d];
-        cholesky_->solve(component_in_.data(), component_out_.data());
-        for (int i = 0; i < n; ++i) out[3 * i + d] = component_out_[i];
-      }
-    }
-    petsc_check(VecRestoreArray(x, &out), "VecRestoreArray");
-    petsc_check(VecRestoreArrayRead(r, &in), "VecRestoreArrayRead");
-    return;
-  }
-  if (kind_ != Kind::scalar) {
+  if (!cholesky_ && kind_ != Kind::scalar) {
     petsc_check(PCApply(pc_, r, x), "PCApply");
     return;
   }
-  const PetscInt n = matrix_.rows;
   const PetscScalar* in;
   PetscScalar* out;
   petsc_check(VecGetArrayRead(r, &in), "VecGetArrayRead");
   petsc_check(VecGetArray(x, &out), "VecGetArray");
-  for (int d = 0; d < 3; ++d) {
-    PetscScalar* c;
-    petsc_check(VecGetArray(component_, &c), "VecGetArray");
-    for (PetscInt i = 0; i < n; ++i) c[i] = in[3 * i + d];
-    petsc_check(VecRestoreArray(component_, &c), "VecRestoreArray");
-    petsc_check(PCApply(pc_, component_, component_solution_), "PCApply");
-    const PetscScalar* s;
-    petsc_check(VecGetArrayRead(component_solution_, &s), "VecGetArrayRead");
-    for (PetscInt i = 0; i < n; ++i) out[3 * i + d] = s[i];
-    petsc_check(VecRestoreArrayRead(component_solution_, &s), "VecRestoreArrayRead");
+  if (kind_ != Kind::scalar) {
+    cholesky_->solve(in, out);
+  } else {
+    // The scalar factor solves each component (component_ and component_solution_ hold the
+    // arrays of component_in_ and component_out_ for PETSc's PC).
+    const int n = matrix_.rows;
+    for (int d = 0; d < 3; ++d) {
+      for (int i = 0; i < n; ++i) component_in_[i] = in[3 * i + d];
+      if (cholesky_) {
+        cholesky_->solve(component_in_.data(), component_out_.data());
+      } else {
+        // component_in_ was written behind PETSc's back: a write access marks the vector changed.
+        PetscScalar* written;
+        petsc_check(VecGetArrayWrite(component_, &written), "VecGetArrayWrite");
+        petsc_check(VecRestoreArrayWrite(component_, &written), "VecRestoreArrayWrite");
+        petsc_check(PCApply(pc_, component_, component_solution_), "PCApply");
+      }
+      for (int i = 0; i < n; ++i) out[3 * i + d] = component_out_[i];
+    }
   }
   petsc_check(VecRestoreArray(x, &out), "VecRestoreArray");
   petsc_check(VecRestoreArrayRead(r, &in), "VecRestoreArrayRead");

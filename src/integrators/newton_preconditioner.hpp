@@ -61,8 +61,9 @@ class NewtonPreconditioner {
   Mat petsc_matrix_ = nullptr;
   PC pc_ = nullptr;
   std::unique_ptr<SupernodalCholesky> cholesky_;
-  std::vector<double> component_in_, component_out_;        // scalar with cholesky_: N
-  Vec component_ = nullptr, component_solution_ = nullptr;  // scalar: one component, N
+  std::vector<double> component_in_, component_out_;  // scalar: one component, N
+  // scalar without cholesky_: the same arrays as PETSc vectors
+  Vec component_ = nullptr, component_solution_ = nullptr;
 };
 
 // The preconditioner `auto` picks for a scene of these families (docs/integrators.md).

@@ -172,16 +172,21 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
     const char* label;
     P preconditioner;
     K krylov;
+    const char* options = "";
   };
+  // The last variant leaves the scalar factor to PETSc's own Cholesky, solved per component.
   for (const Variant& c :
        {Variant{"tangent+cg", P::tangent, K::cg},
         Variant{"majoriser+cg", P::majoriser, K::automatic},
         Variant{"scalar+cg", P::scalar, K::automatic}, Variant{"scalar+gmres", P::scalar, K::gmres},
-        Variant{"gamg+cg", P::gamg, K::automatic}}) {
+        Variant{"gamg+cg", P::gamg, K::automatic},
+        Variant{"scalar+cg, PETSc's Cholesky", P::scalar, K::automatic,
+                " -precond_pc_factor_mat_solver_type petsc"}}) {
     PetscNewtonSettings s = newton("newmark");
     s.preconditioner = c.preconditioner;
     s.krylov = c.krylov;
     s.petsc_options += " -ksp_rtol 1e-12";
+    s.petsc_options += c.options;
     const Trajectory r = simulate(*v, s, 20, dt);
     const double difference = test::max_difference(r.position, reference.position);
     std::printf("%s: max |dy| = %.2e of the motion\n", c.label,
@@ -196,8 +201,11 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
 // The factor kept in single precision (the default) against double: the Newton or Krylov
 // iteration around the back-solve corrects its rounding (relative 3e-7 per solve,
 // test_supernodal_cholesky.cpp), so both stop within the Newton tolerance of the same minimiser
-// (the 1e-7 of the motion above) in about the same iterations. The last variant leaves the
-// factor to PETSc's own Cholesky (any -precond_pc_* choice other than CHOLMOD does).
+// (the 1e-7 of the motion above). That rounding is far below what one modified Newton iteration
+// leaves (r₁/r₀ of 1e-4 to 1e-2), so the iteration counts match (measured equal in every
+// variant); the 10% allows a stage whose residual ends next to the tolerance to need one more. The
+// last variant leaves the factor to PETSc's own Cholesky (any -precond_pc_* choice other than
+// CHOLMOD does).
 TEST(FactorReuse, SinglePrecisionFactorGivesTheTrajectoryOfTheDoubleOne) {
   using P = PetscNewtonSettings::Preconditioner;
   using F = FactorPrecision;
