@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "integrators/petsc_session.hpp"
 #include "linear/blas_threads.hpp"
+#include "linear/nearest_bonds.hpp"
 #include "linear/shifted_system.hpp"
 #include "model/stiffness.hpp"
 
@@ -27,6 +28,13 @@ void shift_scalar(SparseSymmetric& a, const std::vector<int>& diagonal,
   shift_and_fix(a, diagonal, particle_mass, inertia, particle_fixed);
 }
 
+// The nearest preconditioner keeps this many nearest members of each family. Measured on the
+// glass cantilever (bench_implicit_step, backward Euler at 300× the explicit estimate, 127
+// members per interior family): CG iterations per Newton iteration 30 / 15 / 11 / 9 keeping
+// 12 / 20 / 30 / 45 members (6.5 with every member), and at 95,187 particles 20 members take
+// 7.2 s per step and 5.7 GB, 30 members 6.3 s and 7.9 GB.
+constexpr int kNearestMembers = 20;
+
 }  // namespace
 
 const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
@@ -36,6 +44,8 @@ const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
       return "tangent";
     case P::majoriser:
       return "majoriser";
+    case P::nearest:
+      return "nearest";
     case P::scalar:
       return "scalar";
     case P::gamg:
@@ -47,14 +57,16 @@ const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
 }
 
 PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families) {
-  // Measured on the glass cantilever (docs/integrators.md, bench_implicit_step): the two-hop
-  // factor is fastest per step while it fits (7,948 particles: 0.92 s per SDIRK4 step against
-  // 2.3 s with the majoriser and 4.8 s with the scalar factor) but takes 2.6 GB there and grows
-  // far faster than the scene; the one-hop majoriser's factor a quarter of that; the scalar
-  // factor a ninth of the majoriser's, the only one that fits at 1e5 particles.
+  // Measured on the glass cantilever (docs/accuracy.md, bench_implicit_step, backward Euler at
+  // 300× the explicit estimate): the two-hop factor is fastest per step while it fits (7,948
+  // particles: 0.069 s per later step, 1.77 GB) but grows far faster than the scene. At 26,973
+  // particles the one-hop majoriser's factor takes 17.4 s to make and 3.8 GB for 1.36 s per
+  // later step, the nearest members' 5.1 s and 1.1 GB for 1.65 s; at 95,187 the nearest takes
+  // 7.2 s per step and 5.7 GB where the scalar factor took 34.8 s (59 CG iterations per Newton
+  // iteration against 16: the scalar matrix does not see bending).
   const std::size_t particles = families.offsets.size() - 1;
   using P = PetscNewtonSettings::Preconditioner;
-  return particles <= 10000 ? P::tangent : particles <= 30000 ? P::majoriser : P::scalar;
+  return particles <= 10000 ? P::tangent : P::nearest;
 }
 
 NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
@@ -69,6 +81,10 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
     case Kind::majoriser:
     case Kind::gamg:
       matrix_ = bond_pattern(families);
+      break;
+    case Kind::nearest:
+      nearest_ = nearest_bonds(families, kNearestMembers);
+      matrix_ = nearest_bond_pattern(families, nearest_);
       break;
     case Kind::scalar:
       matrix_ = scalar_bond_pattern(families);
@@ -147,6 +163,10 @@ void NewtonPreconditioner::refresh(const double* z) {
     case Kind::majoriser:
     case Kind::gamg:
       stiffness.assemble_majoriser(z, matrix_);
+      shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      break;
+    case Kind::nearest:
+      stiffness.assemble_nearest_stiffness(z, nearest_, matrix_);
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::scalar:

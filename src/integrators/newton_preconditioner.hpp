@@ -4,6 +4,8 @@
 // for as many Newton iterations and steps as the refresh policy allows (petsc_newton.cpp).
 //   tangent:   the tangent itself, two-hop 3N×3N, CHOLMOD (an exact Newton matrix when fresh);
 //   majoriser: the bond-wise majoriser K^bw ⪰ K, one-hop 3N×3N, CHOLMOD;
+//   nearest:   the majoriser's bonds to each family's nearest members only, rescaled to the
+//              family's stiffness (Stiffness::assemble_nearest_stiffness), 3N×3N, CHOLMOD;
 //   scalar:    A M + L ⊗ I₃ with L the one-hop scalar stiffness (Model::assemble_scalar_stiffness),
 //              N×N, CHOLMOD, applied to the three components;
 //   gamg:      PETSc's algebraic multigrid on the majoriser, rigid-body modes as near null space.
@@ -56,6 +58,7 @@ class NewtonPreconditioner {
   PetscOptions options_;
   SparseSymmetric matrix_;            // what is factorized, in CHOLMOD's and SEQAIJ's layout
   std::vector<int> diagonal_;         // index of entry (r, r) in matrix_
+  std::vector<char> nearest_;         // nearest: the kept bonds
   SparseSymmetric scalar_stiffness_;  // scalar: L
   bool scalar_assembled_ = false;
   Mat petsc_matrix_ = nullptr;

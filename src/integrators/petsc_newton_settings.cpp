@@ -24,11 +24,9 @@ const std::vector<std::pair<std::string, S::Tangent>> kTangents = {
     {"majoriser", S::Tangent::majoriser},
     {"exact", S::Tangent::exact}};
 const std::vector<std::pair<std::string, S::Preconditioner>> kPreconditioners = {
-    {"auto", S::Preconditioner::automatic},
-    {"tangent", S::Preconditioner::tangent},
-    {"majoriser", S::Preconditioner::majoriser},
-    {"scalar", S::Preconditioner::scalar},
-    {"gamg", S::Preconditioner::gamg}};
+    {"auto", S::Preconditioner::automatic},      {"tangent", S::Preconditioner::tangent},
+    {"majoriser", S::Preconditioner::majoriser}, {"nearest", S::Preconditioner::nearest},
+    {"scalar", S::Preconditioner::scalar},       {"gamg", S::Preconditioner::gamg}};
 const std::vector<std::pair<std::string, S::Krylov>> kKrylov = {{"auto", S::Krylov::automatic},
                                                                 {"none", S::Krylov::none},
                                                                 {"cg", S::Krylov::cg},

@@ -24,7 +24,7 @@ struct PetscNewtonSettings final : IntegratorOptions {
   // The factor Newton's linear solves are preconditioned with: the tangent itself (two-hop,
   // CHOLMOD), the one-hop majoriser (CHOLMOD), a scalar one-hop matrix times I₃ (CHOLMOD) or
   // algebraic multigrid on the majoriser (PETSc GAMG); auto by size.
-  enum class Preconditioner { automatic, tangent, majoriser, scalar, gamg };
+  enum class Preconditioner { automatic, tangent, majoriser, nearest, scalar, gamg };
   Preconditioner preconditioner = Preconditioner::automatic;
   // The precision a CHOLMOD factor is kept and back-solved in: single halves the bytes each
   // back-solve reads; the Newton or Krylov iteration around it corrects the rounding.

@@ -25,9 +25,6 @@ int self_position(const Families& families, int i) {
   return static_cast<int>(std::lower_bound(begin, end, i) - begin);
 }
 
-namespace {
-
-// Expands a particle adjacency (sorted particle lists per particle) into 3×3 scalar blocks.
 SparseSymmetric expand_blocks(const std::vector<std::vector<int>>& adjacency) {
   const int n = static_cast<int>(adjacency.size());
   SparseSymmetric a;
@@ -47,6 +44,8 @@ SparseSymmetric expand_blocks(const std::vector<std::vector<int>>& adjacency) {
   a.values.assign(a.columns.size(), 0.0);
   return a;
 }
+
+namespace {
 
 std::vector<int> closed_family(const Families& families, int i) {
   std::vector<int> row(families.neighbors.begin() + families.offsets[i],

@@ -34,6 +34,10 @@ SparseSymmetric two_hop_pattern(const Families& families);
 // scalar one-hop stiffness (Model::assemble_scalar_stiffness), columns sorted.
 SparseSymmetric scalar_bond_pattern(const Families& families);
 
+// 3×3 blocks from a particle adjacency (each particle's row: a sorted list of particles, itself
+// included).
+SparseSymmetric expand_blocks(const std::vector<std::vector<int>>& adjacency);
+
 // Position of particle i's own block in its row of bond_pattern: the number of family members
 // with a smaller index.
 int self_position(const Families& families, int i);

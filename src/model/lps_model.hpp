@@ -42,6 +42,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void restore_state(const NamedArrays& state) override;
   void assemble_majoriser(const double* y, SparseSymmetric& K) override;
   void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;
+  void assemble_nearest_stiffness(const double* y, const std::vector<char>& kept,
+                                  SparseSymmetric& K) override;
   void linearize(const double* y, bool clamp_compression) override;
   void apply_tangent(const double* v, double* out) const override;
   void assemble_scalar_stiffness(SparseSymmetric& L) const override;

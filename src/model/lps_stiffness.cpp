@@ -189,6 +189,50 @@ void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
   }
 }
 
+// The majoriser's bond blocks (as assemble_majoriser) on the kept bonds, scaled (stiffness.hpp).
+void LpsModel::assemble_nearest_stiffness(const double* y, const std::vector<char>& kept,
+                                          SparseSymmetric& K) {
+  update_dilatation(y);
+  const int n = particles_.count();
+  const auto& off = families_.offsets;
+  const auto& nbr = families_.neighbors;
+  const auto& xi = families_.reference_length;
+  const std::vector<MajoriserRow> rows = majoriser_rows();
+  const auto bond_stiffness = [&](int i, int b) {
+    return majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, nbr[b], families_.reverse[b]);
+  };
+  std::vector<double> scale(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    double family = 0, near = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const double moment = bond_stiffness(i, b) * xi[b] * xi[b];
+      family += moment;
+      if (kept[b]) near += moment;
+    }
+    scale[i] = near > 0 ? family / near : 1.0;
+  }
+  std::fill(K.values.begin(), K.values.end(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    // Row i of nearest_bond_pattern: the kept members in increasing order, i's own block among
+    // them.
+    int self = 0;
+    for (int b = off[i]; b < off[i + 1] && nbr[b] < i; ++b) self += kept[b];
+    int index = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      if (!kept[b]) continue;
+      const int j = nbr[b];
+      const auto g = bond_geometry(y, particles_, i, j, xi[b]);
+      const double s = 0.5 * (scale[i] + scale[j]);
+      const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
+      scatter_bond(K, i, self, index + (index >= self ? 1 : 0), g.n, s * bond_stiffness(i, b),
+                   s * std::max(p, 0.0) / std::max(g.length, 1e-300));
+      ++index;
+    }
+  }
+}
+
 // The exact tangent (notes §3): per family, K_i = V_i J_iᵀ H_i J_i with J_iᵀ a = Σ_j a_j n_ij at j
 // and −Σ_j a_j n_ij at i, plus the geometric term. Rows are assembled one particle at a time, each
 // from the families that contain it, so no two threads write to the same row. With

@@ -1,6 +1,8 @@
 #pragma once
 // An optional capability of a model (Model::stiffness()): its stiffness for implicit
 // integrators (notes §3), with e^p frozen. A model without it gives no implicit step.
+#include <vector>
+
 namespace fissure {
 
 struct SparseSymmetric;  // linear/sparse_symmetric.hpp
@@ -15,6 +17,14 @@ class Stiffness {
   // PSD matrix K⁺ ⪰ K on the tangent's pattern.
   virtual void assemble_majoriser(const double* y, SparseSymmetric& K) = 0;
   virtual void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) = 0;
+  // The majoriser's bond terms on the bonds `kept` flags (linear/nearest_bonds.hpp) only, into
+  // nearest_bond_pattern(families, kept): each kept bond's block scaled by the mean over its two
+  // ends of s_i = Σ_j h_ij |ξ_ij|² / Σ_kept h_ij |ξ_ij|² (h a bond's majoriser stiffness), so
+  // that each row keeps its family's second moment of stiffness, which sets the moduli that
+  // long waves and bending see. PSD, but not a bound on K: for preconditioners only. With every
+  // bond kept it is the majoriser.
+  virtual void assemble_nearest_stiffness(const double* y, const std::vector<char>& kept,
+                                          SparseSymmetric& K) = 0;
   // The same tangent without assembly (matrix-free): linearize() records what K (or K⁺ with
   // clamp_compression) at y needs, apply_tangent() then returns out = K v for any v (3N each),
   // equal to assemble_tangent's matrix times v up to round-off, at about the cost of one force

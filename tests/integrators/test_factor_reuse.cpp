@@ -178,6 +178,7 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
   for (const Variant& c :
        {Variant{"tangent+cg", P::tangent, K::cg},
         Variant{"majoriser+cg", P::majoriser, K::automatic},
+        Variant{"nearest+cg", P::nearest, K::automatic},
         Variant{"scalar+cg", P::scalar, K::automatic}, Variant{"scalar+gmres", P::scalar, K::gmres},
         Variant{"gamg+cg", P::gamg, K::automatic},
         Variant{"scalar+cg, PETSc's Cholesky", P::scalar, K::automatic,

@@ -110,6 +110,10 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_EQ(petsc_newton(c).refresh_iterations, 3);
   EXPECT_EQ(petsc_newton(c).refresh_krylov, 100);
   EXPECT_EQ(petsc_newton(c).factor_precision, FactorPrecision::full);
+  const Config nearest =
+      parse_config(kMinimal, "scene.yaml",
+                   {"integrator.type=petsc_newton", "integrator.preconditioner=nearest"});
+  EXPECT_EQ(petsc_newton(nearest).preconditioner, P::nearest);
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"integrator.preconditioner=ilu", "integrator.preconditioner"},
       {"integrator.krylov=bicg", "integrator.krylov"},

@@ -1,0 +1,22 @@
+#pragma once
+// A sparse one-hop pattern for preconditioners of large scenes: of each family only the bonds to
+// its nearest members. The one-hop 3N×3N pattern of a whole family (bond_pattern) has a Cholesky
+// factor too large to keep at 1e5 particles; keeping a fixed number of nearest members thins the
+// separators that fill-in grows with, while the bonds kept still carry bending, which a scalar
+// matrix (scalar_bond_pattern) does not.
+#include <vector>
+
+#include "linear/sparse_symmetric.hpp"
+
+namespace fissure {
+
+// One flag per directed bond: whether the bond joins particles of which one counts the other
+// among its `members` nearest family members (ties at the last length kept), so that
+// kept[b] == kept[reverse[b]]. A family of at most `members` members keeps every bond.
+std::vector<char> nearest_bonds(const Families& families, int members);
+
+// 3×3 blocks coupling each particle with itself and the members its kept bonds join, in
+// increasing order (bond_pattern's layout over the kept bonds only).
+SparseSymmetric nearest_bond_pattern(const Families& families, const std::vector<char>& kept);
+
+}  // namespace fissure
