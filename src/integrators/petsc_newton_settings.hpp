@@ -22,8 +22,9 @@ struct PetscNewtonSettings final : IntegratorOptions {
   std::string petsc_options;  // passed to PETSc untouched, e.g. "-snes_rtol 1e-8"
   int max_step_halvings = 4;  // halvings of a step whose Newton solve fails
   // The factor Newton's linear solves are preconditioned with: the tangent itself (two-hop,
-  // CHOLMOD), the one-hop majoriser (CHOLMOD), a scalar one-hop matrix times I₃ (CHOLMOD) or
-  // algebraic multigrid on the majoriser (PETSc GAMG); auto by size.
+  // CHOLMOD), the one-hop majoriser (CHOLMOD), the majoriser's bonds to each family's nearest
+  // members (CHOLMOD), a scalar one-hop matrix times I₃ (CHOLMOD) or algebraic multigrid on the
+  // majoriser (PETSc GAMG); auto by size.
   enum class Preconditioner { automatic, tangent, majoriser, nearest, scalar, gamg };
   Preconditioner preconditioner = Preconditioner::automatic;
   // The precision a CHOLMOD factor is kept and back-solved in: single halves the bytes each
