@@ -69,6 +69,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   void plastic_force_row(const lps::BondRow& row, int i, const double* y, double elastic_theta,
                          double force[3], double* squares) const;
   void update_dilatation(const double* y);
+  // assemble_majoriser (kept == nullptr) and assemble_nearest_stiffness (lps_stiffness.cpp).
+  void assemble_bond_blocks(const double* y, const std::vector<char>* kept, SparseSymmetric& K);
   // The majoriser stiffness h_ij row i gives bond b (lps_stiffness.cpp), a bond's stiffness being
   // h_ij + h_ji: from row i's factors a_i Σ|c̄| and q_i Σ|r| (majoriser_rows(), per particle, so
   // that no per-bond array is needed) and the bond's c̄_ij and r_ij (majoriser_weights()).

@@ -166,32 +166,19 @@ double LpsModel::stable_time_step() const {
 }
 
 void LpsModel::assemble_majoriser(const double* y, SparseSymmetric& K) {
-  update_dilatation(y);
-  const int n = particles_.count();
-  const auto& off = families_.offsets;
-  const auto& nbr = families_.neighbors;
-  const auto& xi = families_.reference_length;
-  const std::vector<MajoriserRow> rows = majoriser_rows();
-  std::fill(K.values.begin(), K.values.end(), 0.0);
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const int self = self_position(families_, i);
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int j = nbr[b];
-      const auto g = bond_geometry(y, particles_, i, j, xi[b]);
-      const double k =
-          majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, j, families_.reverse[b]);
-      const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
-      const int k_index = b - off[i];
-      scatter_bond(K, i, self, k_index + (k_index >= self ? 1 : 0), g.n, k,
-                   std::max(p, 0.0) / std::max(g.length, 1e-300));
-    }
-  }
+  assemble_bond_blocks(y, nullptr, K);
 }
 
-// The majoriser's bond blocks (as assemble_majoriser) on the kept bonds, scaled (stiffness.hpp).
 void LpsModel::assemble_nearest_stiffness(const double* y, const std::vector<char>& kept,
                                           SparseSymmetric& K) {
+  assemble_bond_blocks(y, &kept, K);
+}
+
+// Each bond's block k nnᵀ + g (I − nnᵀ), k = h_ij + h_ji the majoriser's bond stiffness and
+// g = max(p, 0)/ℓ; with `kept`, only the kept bonds, each scaled by the mean of its ends' s_i
+// (stiffness.hpp), into nearest_bond_pattern's layout.
+void LpsModel::assemble_bond_blocks(const double* y, const std::vector<char>* kept,
+                                    SparseSymmetric& K) {
   update_dilatation(y);
   const int n = particles_.count();
   const auto& off = families_.offsets;
@@ -201,30 +188,30 @@ void LpsModel::assemble_nearest_stiffness(const double* y, const std::vector<cha
   const auto bond_stiffness = [&](int i, int b) {
     return majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, nbr[b], families_.reverse[b]);
   };
-  std::vector<double> scale(n);
+  const auto is_kept = [&](int b) { return !kept || (*kept)[b]; };
+  std::vector<double> scale(kept ? n : 0);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < static_cast<int>(scale.size()); ++i) {
     double family = 0, near = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const double moment = bond_stiffness(i, b) * xi[b] * xi[b];
       family += moment;
-      if (kept[b]) near += moment;
+      if (is_kept(b)) near += moment;
     }
     scale[i] = near > 0 ? family / near : 1.0;
   }
   std::fill(K.values.begin(), K.values.end(), 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    // Row i of nearest_bond_pattern: the kept members in increasing order, i's own block among
-    // them.
+    // Row i: the kept members in increasing order, i's own block among them.
     int self = 0;
-    for (int b = off[i]; b < off[i + 1] && nbr[b] < i; ++b) self += kept[b];
+    for (int b = off[i]; b < off[i + 1] && nbr[b] < i; ++b) self += is_kept(b);
     int index = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      if (!kept[b]) continue;
+      if (!is_kept(b)) continue;
       const int j = nbr[b];
       const auto g = bond_geometry(y, particles_, i, j, xi[b]);
-      const double s = 0.5 * (scale[i] + scale[j]);
+      const double s = kept ? 0.5 * (scale[i] + scale[j]) : 1.0;
       const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
       scatter_bond(K, i, self, index + (index >= self ? 1 : 0), g.n, s * bond_stiffness(i, b),
                    s * std::max(p, 0.0) / std::max(g.length, 1e-300));
