@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "integrators/newton_preconditioner.hpp"
 #include "integrators/petsc_newton.hpp"
 #include "support/integrator_statistics.hpp"
 #include "support/vibration.hpp"
@@ -197,6 +198,22 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
     EXPECT_GT(test::statistic(*r.integrator, "krylov_iterations"), 0) << c.label;
     EXPECT_GT(test::statistic(*r.integrator, "tangent_products"), 0) << c.label;
   }
+}
+
+// `auto` picks by the particle count (docs/config.md): the two-hop tangent's factor up to 10,000
+// particles, the nearest members' one-hop factor above, where the tangent's factor grows too large
+// (docs/accuracy.md, "Cost against size").
+TEST(FactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndNearestAbove) {
+  using P = PetscNewtonSettings::Preconditioner;
+  const auto families_of = [](int particles) {
+    Families f;
+    f.offsets.assign(particles + 1, 0);
+    return f;
+  };
+  EXPECT_EQ(choose_preconditioner(families_of(857)), P::tangent);
+  EXPECT_EQ(choose_preconditioner(families_of(10000)), P::tangent);
+  EXPECT_EQ(choose_preconditioner(families_of(10001)), P::nearest);
+  EXPECT_EQ(choose_preconditioner(families_of(95187)), P::nearest);
 }
 
 // The factor kept in single precision (the default) against double: the Newton or Krylov
