@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "linear/nearest_bonds.hpp"
@@ -79,6 +80,18 @@ TEST(NearestStiffness, EveryBondKeptIsTheMajoriser) {
   EXPECT_EQ(near.values, majoriser.values);
 }
 
+// The nearest stiffness on the bonds `kept` and the majoriser, both at the reference state.
+std::pair<SparseSymmetric, SparseSymmetric> at_rest(const Scene& scene,
+                                                     const std::vector<char>& kept) {
+  auto model = make_model(scene);
+  const double* x = scene.particles.reference.data();
+  SparseSymmetric near = nearest_bond_pattern(scene.families, kept);
+  SparseSymmetric majoriser = bond_pattern(scene.families);
+  model->stiffness()->assemble_nearest_stiffness(x, kept, near);
+  model->stiffness()->assemble_majoriser(x, majoriser);
+  return {std::move(near), std::move(majoriser)};
+}
+
 // Σ over the off-diagonal blocks (i, j) of −tr K_ij |x_j − x_i|²: at rest (no bond force, so no
 // geometric term) −tr K_ij is the pair's bond stiffness k_ij, so this is the body's second moment
 // of bond stiffness.
@@ -105,14 +118,10 @@ double second_moment(const SparseSymmetric& K, const std::vector<double>& x) {
 // rescaling by one end's s_i alone is not.
 TEST(NearestStiffness, KeepsTheBodysSecondMomentOfBondStiffness) {
   const Scene scene = test::small_block();
-  auto model = make_model(scene);
   const Families& f = scene.families;
   const auto& x = scene.particles.reference;
   const std::vector<char> kept = nearest_bonds(f, 20);
-  SparseSymmetric near = nearest_bond_pattern(f, kept);
-  SparseSymmetric majoriser = bond_pattern(f);
-  model->stiffness()->assemble_nearest_stiffness(x.data(), kept, near);
-  model->stiffness()->assemble_majoriser(x.data(), majoriser);
+  const auto [near, majoriser] = at_rest(scene, kept);
   long kept_count = 0;
   for (const char k : kept) kept_count += k;
   ASSERT_LT(kept_count, static_cast<long>(f.directed_bonds()));
@@ -151,14 +160,9 @@ double energy(const SparseSymmetric& K, const std::vector<double>& u) {
 TEST(NearestStiffness, LongWavesSeeTheFamilysStiffness) {
   const Scene scene = test::block_scene(
       {.size = {0.24, 0.06, 0.06}, .resolution = 0.012, .bulk = 3.3e10, .shear = 2.0e10});
-  auto model = make_model(scene);
   const Families& f = scene.families;
   const auto& x = scene.particles.reference;
-  const std::vector<char> kept = nearest_bonds(f, 20);
-  SparseSymmetric near = nearest_bond_pattern(f, kept);
-  SparseSymmetric majoriser = bond_pattern(f);
-  model->stiffness()->assemble_nearest_stiffness(x.data(), kept, near);
-  model->stiffness()->assemble_majoriser(x.data(), majoriser);
+  const auto [near, majoriser] = at_rest(scene, nearest_bonds(f, 20));
   const int n = scene.particles.count();
   struct Field {
     const char* label;
