@@ -41,15 +41,17 @@ int main(int argc, char** argv) {
   const double factor = argc > 3 ? std::atof(argv[3]) : 100;
   const std::string scheme = argc > 4 ? argv[4] : "sdirk4";
   const std::string preconditioner = argc > 5 ? argv[5] : "auto";
+  const std::string petsc_options = argc > 6 ? argv[6] : "";
   // TetGen gives about 14.8 tets per λ³ at its quality settings; the bar is 0.01 m³.
   const double lambda = std::cbrt(14.8 * 0.01 / target);
   const std::string yaml = fmt::format(
       "time: {{end: 1.0}}\ngravity: [0, 0, -9.81]\nintegrator: {{type: petsc_newton, scheme: {1}, "
-      "preconditioner: {2}}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, 0], max: [1.0, 0.1, "
+      "preconditioner: {2}, petsc_options: \"{4}\"}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, "
+      "0], max: [1.0, 0.1, "
       "0.1]}}}}\n    resolution: {0}\n    horizon: 1.45\n    material: {{model: lps, density: "
       "2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\nconstraints:\n  - {{region: {{box: "
       "{{min: [-1, -1, -1], max: [{3}, 1, 1]}}}}, fix: true}}\n",
-      lambda, scheme, preconditioner, 0.6 * lambda);
+      lambda, scheme, preconditioner, 0.6 * lambda, petsc_options);
   auto start = Clock::now();
   const fissure::Config config = fissure::parse_config(yaml, "bench_implicit_step.yaml");
   const fissure::Scene scene = fissure::build_scene(config);

@@ -35,6 +35,15 @@ void shift_scalar(SparseSymmetric& a, const std::vector<int>& diagonal,
 // 7.2 s per step and 5.7 GB, 30 members 6.3 s and 7.9 GB.
 constexpr int kNearestMembers = 20;
 
+// gamg's matrix keeps more members: a multigrid cycle costs about linearly in its entries where
+// a factor's fill grows faster. Measured as above (bench_implicit_step, gamg): CG iterations per
+// step 28 / 23 / 19 keeping 20 / 30 / 45 members at 7,948 particles (28.6 / 27.1 / 30.2 µs per
+// particle), and at 95,187 particles 20 members took 42 µs per particle, 30 members 38.5.
+constexpr int kGamgMembers = 30;
+
+// gamg's default -pc_gamg_threshold (a user's -precond_pc_gamg_threshold overrides it).
+constexpr PetscReal kGamgThreshold = 0.02;
+
 }  // namespace
 
 const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
@@ -63,10 +72,12 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   // particles the one-hop majoriser's factor takes 17.4 s to make and 3.8 GB for 1.36 s per
   // later step, the nearest members' 5.1 s and 1.1 GB for 1.65 s; at 95,187 the nearest takes
   // 7.2 s per step and 5.7 GB where the scalar factor took 34.8 s (59 CG iterations per Newton
-  // iteration against 16: the scalar matrix does not see bending).
+  // iteration against 16: the scalar matrix does not see bending). GAMG on the nearest members'
+  // matrix costs about linearly: 27 / 27 / 30–35 µs per particle at 7,948 / 17,096 / 95,187
+  // particles (nearest's factor: 34 / 30 / 73), 1.9 GB at 95,187.
   const std::size_t particles = families.offsets.size() - 1;
   using P = PetscNewtonSettings::Preconditioner;
-  return particles <= 10000 ? P::tangent : P::nearest;
+  return particles <= 10000 ? P::tangent : P::gamg;
 }
 
 NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
@@ -79,11 +90,11 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
                                                                      : two_hop_pattern(families);
       break;
     case Kind::majoriser:
-    case Kind::gamg:
       matrix_ = bond_pattern(families);
       break;
     case Kind::nearest:
-      nearest_ = nearest_bonds(families, kNearestMembers);
+    case Kind::gamg:
+      nearest_ = nearest_bonds(families, kind == Kind::gamg ? kGamgMembers : kNearestMembers);
       matrix_ = nearest_bond_pattern(families, nearest_);
       break;
     case Kind::scalar:
@@ -100,6 +111,11 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
   petsc_check(PCSetOptionsPrefix(pc_, "precond_"), "PCSetOptionsPrefix");
   if (kind == Kind::gamg) {
     petsc_check(PCSetType(pc_, PCGAMG), "PCSetType");
+    // Drop the weakest couplings from the aggregation graph: 26 against 34 µs per particle with
+    // PETSc's default (none dropped) at 7,948 particles (bench_implicit_step, docs/integrators.md).
+    const PetscReal threshold[] = {kGamgThreshold};
+    petsc_check(PCGAMGSetThreshold(pc_, const_cast<PetscReal*>(threshold), 1),
+                "PCGAMGSetThreshold");
   } else {
     petsc_check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
     petsc_check(PCFactorSetMatSolverType(pc_, MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
@@ -161,11 +177,11 @@ void NewtonPreconditioner::refresh(const double* z) {
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::majoriser:
-    case Kind::gamg:
       stiffness.assemble_majoriser(z, matrix_);
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::nearest:
+    case Kind::gamg:
       stiffness.assemble_nearest_stiffness(z, nearest_, matrix_);
       shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
@@ -190,8 +206,11 @@ void NewtonPreconditioner::refresh(const double* z) {
   petsc_check(MatSeqAIJGetArray(petsc_matrix_, &values), "MatSeqAIJGetArray");
   std::memcpy(values, matrix_.values.data(), matrix_.values.size() * sizeof(double));
   petsc_check(MatSeqAIJRestoreArray(petsc_matrix_, &values), "MatSeqAIJRestoreArray");
-  if (kind_ == Kind::gamg) {
-    // The rigid-body modes at z: what the majoriser (nearly) does not resist.
+  PCType type;
+  petsc_check(PCGetType(pc_, &type), "PCGetType");
+  if (std::strcmp(type, PCGAMG) == 0 && kind_ != Kind::scalar) {
+    // The rigid-body modes at z: what the stiffness (nearly) does not resist (also when a
+    // user's -precond_pc_type gamg picks multigrid for another kind's matrix).
     Vec coordinates;
     MatNullSpace modes;
     const PetscInt n = matrix_.rows;

@@ -8,8 +8,11 @@
 //              family's stiffness (Stiffness::assemble_nearest_stiffness), 3N×3N, CHOLMOD;
 //   scalar:    A M + L ⊗ I₃ with L the one-hop scalar stiffness (Model::assemble_scalar_stiffness),
 //              N×N, CHOLMOD, applied to the three components;
-//   gamg:      PETSc's algebraic multigrid on the majoriser, rigid-body modes as near null space.
-// The inner PETSc PC reads the options prefixed `precond_` (e.g. -precond_pc_gamg_threshold).
+//   gamg:      PETSc's algebraic multigrid (GAMG) on the nearest matrix, rigid-body modes as
+//              near null space, threshold 0.02.
+// The inner PETSc PC reads the options prefixed `precond_` (e.g. -precond_pc_gamg_threshold);
+// GAMG's level smoothers (-precond_mg_levels_*) read only PETSC_OPTIONS: PETSc 3.18 creates them
+// on the global options database.
 // While it stays PETSc's CHOLMOD Cholesky (the default), the factor is made and solved by
 // SupernodalCholesky instead, in the precision `factor_precision` asks for.
 #include <petscpc.h>

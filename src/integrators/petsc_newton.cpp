@@ -72,6 +72,9 @@ struct PetscNewton::Solver {
   long step_halvings = 0;         // failed steps redone as two halves
   long fresh_newton_retries = 0;  // stages that failed with a reused factor, redone without
   bool krylov = false;            // a Krylov method runs on the matrix-free tangent
+  double linear_rtol = 1e-3;      // the Krylov method's relative tolerance (-ksp_rtol)
+  bool linear_rtol_fixed = false;    // the user set -ksp_rtol: no stop at the Newton target
+  long linear_solves_to_target = 0;  // Krylov solves stopped at the Newton target, not -ksp_rtol
   bool options_checked = false;
 };
 
@@ -134,6 +137,24 @@ Solver::Refresh refresh_reason(Solver& s) {
   return Refreshes::none;
 }
 
+// Inexact Newton that does not over-solve its last linear system: the Krylov method stops at
+// 1e-3 of |r_k|, or sooner once its residual is half the one the Newton test stops at (max of
+// -snes_atol, -snes_rtol |r_0| and the round-off floor), which that iteration's step then
+// reaches up to the remainder the linearization leaves. A -ksp_rtol the user sets holds as given.
+void set_linear_tolerance(Solver& s) {
+  if (s.linear_rtol_fixed || s.norms.empty()) return;
+  PetscReal atol, rtol, stol;
+  PetscInt iterations, evaluations;
+  petsc_check(SNESGetTolerances(s.snes, &atol, &rtol, &stol, &iterations, &evaluations),
+              "SNESGetTolerances");
+  const double target = std::max({atol, rtol * s.norms.front(), s.floor});
+  const double relative = std::max(s.linear_rtol, 0.5 * target / s.norms.back());
+  if (relative > s.linear_rtol) ++s.linear_solves_to_target;
+  petsc_check(
+      KSPSetTolerances(s.ksp, std::min(relative, 0.5), PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
+      "KSPSetTolerances");
+}
+
 // The Newton matrix is matrix-free; what PETSc calls the Jacobian evaluation only moves its
 // linearization point, and refreshes the preconditioner's factor when the policy asks.
 PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
@@ -162,6 +183,7 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
     }
     ++s->iterations_since_refresh;
     petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+    if (s->krylov) set_linear_tolerance(*s);
   });
 }
 
@@ -306,6 +328,13 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   const double stable = s.system.dynamics().model().stable_time_step();
   s.stiffness_bound = std::isfinite(stable) ? 4 / (stable * stable) : 0;
   petsc_check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
+  PetscReal rtol, atol, dtol;
+  PetscInt iterations;
+  petsc_check(KSPGetTolerances(s.ksp, &rtol, &atol, &dtol, &iterations), "KSPGetTolerances");
+  s.linear_rtol = rtol;
+  PetscBool set = PETSC_FALSE;
+  petsc_check(PetscOptionsHasName(s.options, nullptr, "-ksp_rtol", &set), "PetscOptionsHasName");
+  s.linear_rtol_fixed = set;
 }
 
 // Near the solution the potential's decrease along the Newton step, at most |r|·|Δz|, falls
@@ -531,6 +560,7 @@ Statistics PetscNewton::statistics() const {
   Statistics stats = {{"newton_iterations", double(s.newton_iterations)},
                       {"linear_solves", double(s.newton_iterations)},  // one per Newton iteration
                       {"krylov_iterations", double(s.krylov_iterations)},
+                      {"linear_solves_to_target", double(s.linear_solves_to_target)},
                       {"line_search_cuts", double(s.line_search.cuts)},
                       {"assemblies", double(p.assemblies)},
                       {"factorizations", double(p.factorizations)},

@@ -135,7 +135,6 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
     double x, y, gamma, volume;
   };
   mutable std::vector<TangentTerms> tangent_terms_;
-  mutable std::vector<double> tangent_rate_;  // s = n·(v_j − v_i) per directed bond, per product
 };
 
 // material.model: lps (the default), no options of its own; plastic with material.plasticity.

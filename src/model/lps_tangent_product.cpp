@@ -33,7 +33,6 @@ void LpsModel::linearize(const double* y, bool clamp_compression) {
   tangent_ny_.resize(bonds);
   tangent_nz_.resize(bonds);
   tangent_geometric_.resize(bonds);
-  tangent_rate_.resize(bonds);
   tangent_alpha_.resize(n);
   tangent_terms_.resize(n);
 #pragma omp parallel for schedule(static)
@@ -69,9 +68,8 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
   const double* nz = tangent_nz_.data();
   const double* g = tangent_geometric_.data();
   const double* alpha = tangent_alpha_.data();
-  double* rate = tangent_rate_.data();
   TangentTerms* terms = tangent_terms_.data();
-  // Pass 1: s_b, and P_i, Q_i into X_i, Y_i.
+  // Pass 1: P_i, Q_i into X_i, Y_i.
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
@@ -80,7 +78,6 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
       const int j = nbr[b];
       const double* vj = v + 3 * j;
       const double s = nx[b] * (vj[0] - vi0) + ny[b] * (vj[1] - vi1) + nz[b] * (vj[2] - vi2);
-      rate[b] = s;
       const double sV = s * V[j];
       P += c[b] * sV;
       Q += w[b] * xi[b] * sV;
@@ -89,7 +86,8 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
     terms[i].x = alpha[i] * P - gamma * Q;
     terms[i].y = gamma * P;
   }
-  // Pass 2: the rows.
+  // Pass 2: the rows, s_b recomputed from the members' v it gathers anyway (as in pass 1, so the
+  // same bits): cheaper than storing and reading it back, since the product is bandwidth-bound.
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < n; ++r) {
     const double vr0 = v[3 * r], vr1 = v[3 * r + 1], vr2 = v[3 * r + 2];
@@ -99,7 +97,7 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
       const int i = nbr[b];
       const double* vi = v + 3 * i;
       const TangentTerms& ti = terms[i];
-      const double s = rate[b];
+      const double s = nx[b] * (vi[0] - vr0) + ny[b] * (vi[1] - vr1) + nz[b] * (vi[2] - vr2);
       const double t_own = ti.volume * (c[b] * tr.x + w[b] * (3.0 * tr.gamma * s - xi[b] * tr.y));
       const double t_member =
           tr.volume * (c_reverse[b] * ti.x + w_reverse[b] * (3.0 * ti.gamma * s - xi[b] * ti.y));

@@ -200,10 +200,43 @@ TEST(FactorReuse, EveryPreconditionerGivesTheSameTrajectory) {
   }
 }
 
+// By default a Krylov solve stops once its residual is half the one the Newton test stops at, if
+// that comes before 1e-3 of its right-hand side; a -ksp_rtol 1e-3 the user sets holds as given.
+// Both runs stop each stage at the same Newton tolerance, so they meet the 1e-7 of the motion
+// above. The default must take fewer Krylov iterations (a rule never applied would not) and no
+// more Newton iterations (a rule stopping the linear solves short of the target would need more).
+TEST(FactorReuse, LinearSolvesStopAtTheNewtonTarget) {
+  using P = PetscNewtonSettings::Preconditioner;
+  auto v = test::make_vibration();
+  const double dt = 20 * v->stable_dt;
+  for (const char* scheme : {"backward_euler", "sdirk4"}) {
+    PetscNewtonSettings adaptive = newton(scheme);
+    adaptive.preconditioner = P::nearest;
+    PetscNewtonSettings fixed = adaptive;
+    fixed.petsc_options += " -ksp_rtol 1e-3";
+    const Trajectory a = simulate(*v, adaptive, 20, dt);
+    const Trajectory f = simulate(*v, fixed, 20, dt);
+    const double difference = test::max_difference(a.position, f.position);
+    std::printf("%s: to target vs fixed -ksp_rtol: max |dy| = %.2e of the motion\n", scheme,
+                difference / reach(*v, f.position));
+    test::print_statistics("  to target", *a.integrator);
+    test::print_statistics("  fixed", *f.integrator);
+    EXPECT_LT(difference, 1e-7 * reach(*v, f.position)) << scheme;
+    EXPECT_GT(test::statistic(*a.integrator, "linear_solves_to_target"), 0) << scheme;
+    EXPECT_EQ(test::statistic(*f.integrator, "linear_solves_to_target"), 0) << scheme;
+    EXPECT_LT(test::statistic(*a.integrator, "krylov_iterations"),
+              test::statistic(*f.integrator, "krylov_iterations"))
+        << scheme;
+    EXPECT_LE(test::statistic(*a.integrator, "newton_iterations"),
+              test::statistic(*f.integrator, "newton_iterations"))
+        << scheme;
+  }
+}
+
 // `auto` picks by the particle count (docs/config.md): the two-hop tangent's factor up to 10,000
-// particles, the nearest members' one-hop factor above, where the tangent's factor grows too large
-// (docs/accuracy.md, "Cost against size").
-TEST(FactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndNearestAbove) {
+// particles, multigrid on the nearest members' one-hop matrix above, where the tangent's factor
+// grows too large (docs/accuracy.md, "Cost against size").
+TEST(FactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndGamgAbove) {
   using P = PetscNewtonSettings::Preconditioner;
   const auto families_of = [](int particles) {
     Families f;
@@ -212,8 +245,8 @@ TEST(FactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndNearestAbove) {
   };
   EXPECT_EQ(choose_preconditioner(families_of(857)), P::tangent);
   EXPECT_EQ(choose_preconditioner(families_of(10000)), P::tangent);
-  EXPECT_EQ(choose_preconditioner(families_of(10001)), P::nearest);
-  EXPECT_EQ(choose_preconditioner(families_of(95187)), P::nearest);
+  EXPECT_EQ(choose_preconditioner(families_of(10001)), P::gamg);
+  EXPECT_EQ(choose_preconditioner(families_of(95187)), P::gamg);
 }
 
 // The factor kept in single precision (the default) against double: the Newton or Krylov
