@@ -5,7 +5,8 @@
 // later step (the factor reused), the same per particle, an explicit step for comparison, Newton
 // and Krylov iterations per step, and the peak resident memory of the process. One size per
 // process, so that the peak is that size's (bench/run_implicit_bench.sh runs 1e3, 1e4, 1e5).
-//   bench_implicit_step [particles] [steps] [factor] [scheme] [preconditioner]
+//   bench_implicit_step [particles] [steps] [factor] [scheme] [preconditioner] [petsc_options]
+// (petsc_options as integrator.petsc_options, e.g. "-ksp_rtol 1e-2").
 #include <fmt/format.h>
 #include <sys/resource.h>
 

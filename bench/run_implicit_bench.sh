@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Cost of one implicit step against the scene's size: bench_implicit_step on the glass cantilever
 # at about 1e3, 1e4 and 1e5 particles (one process each, so each peak memory is its own), with
-# the default preconditioner (auto) and with `nearest` and `scalar` at every size, backward Euler
+# the default preconditioner (auto) and with `gamg`, `nearest` and `scalar` at every size, backward Euler
 # at 300× the explicit estimate. Prints one table: particles, preconditioner, seconds of the first step (it
 # factorizes) and of a later one, µs per particle of a later step and its ratio to the smallest
 # scene's, Newton and Krylov iterations per step, peak memory.
@@ -13,7 +13,7 @@ sizes=("$@")
 ((${#sizes[@]})) || sizes=(1000 10000 100000)
 printf '%-10s %-15s %12s %10s %12s %8s %8s %8s %8s\n' particles preconditioner first_step_s step_s \
   us_per_particle ratio newton krylov peak_gb
-for preconditioner in auto nearest scalar; do
+for preconditioner in auto gamg nearest scalar; do
   base=""
   for n in "${sizes[@]}"; do
     # Several later steps where one is short, so that the per-step time is not one sample.

@@ -77,8 +77,8 @@ TEST_P(EveryIntegrator, GlassWallBreaksThroughTheSharedPostStep) {
   // The wall comes apart, and the split mesh shows it: crack faces in the last surface.
   EXPECT_GT(fragments, 1);
   EXPECT_GT(cracked, 0);
-  // petsc_newton reuses its factor across steps (with `nearest`, the one-hop factor CG is
-  // preconditioned by, whose bonds broke too): broken bonds must have refreshed it.
+  // petsc_newton reuses its factor across steps (with `nearest` and `gamg`, the one-hop matrix CG
+  // is preconditioned by, whose bonds broke too): broken bonds must have refreshed it.
   if (std::string(GetParam().label).rfind("petsc_newton", 0) == 0) {
     const std::string text = test::slurp(dir / "summary.json");
     std::smatch m;
@@ -99,6 +99,9 @@ INSTANTIATE_TEST_SUITE_P(
         IntegratorChoice{"petsc_newton_nearest",
                          "--set integrator.type=petsc_newton --set time.dt=2e-5 "
                          "--set integrator.preconditioner=nearest"},
+        IntegratorChoice{"petsc_newton_gamg",
+                         "--set integrator.type=petsc_newton --set time.dt=2e-5 "
+                         "--set integrator.preconditioner=gamg"},
         IntegratorChoice{"arkode",
                          "--set integrator.type=arkode "
                          "--set integrator.method=DORMAND_PRINCE_7_4_5"}),
