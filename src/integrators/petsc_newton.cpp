@@ -311,8 +311,9 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
       break;
   }
   if (krylov != K::none) {
-    // Inexact Newton: each linear solve to 1e-3 of its right-hand side, judged on the true
-    // residual (no extra preconditioner application per iteration).
+    // Inexact Newton: each linear solve to 1e-3 of its right-hand side or to the Newton target
+    // (set_linear_tolerance), judged on the true residual (no extra preconditioner application
+    // per iteration).
     petsc_check(KSPSetNormType(s.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
     petsc_check(KSPSetTolerances(s.ksp, 1e-3, 1e-50, 1e50, 500), "KSPSetTolerances");
   }
