@@ -123,9 +123,12 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
                    "ARKStepSStolerances");
       arkode_check(ARKStepSetMaxNumSteps(s.memory, -1), "ARKStepSetMaxNumSteps");
       if (s.implicit_rhs) {
+        using P = ArkodeSettings::Preconditioner;
+        P kind = settings_.preconditioner;
+        if (kind == P::automatic) kind = choose_arkode_preconditioner(s.origin.size() / 3);
         s.reduced = std::make_unique<ReducedNewtonSystem>(
             dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov,
-            settings_.factor_precision);
+            settings_.factor_precision, kind == P::nearest);
         s.linear_solver = make_reduced_linear_solver(s.context, s.reduced.get(), &s.error);
         arkode_check(ARKStepSetLinearSolver(s.memory, s.linear_solver, nullptr),
                      "ARKStepSetLinearSolver");

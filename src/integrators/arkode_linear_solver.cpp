@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "integrators/arkode_methods.hpp"
+#include "linear/nearest_bonds.hpp"
 #include "linear/shifted_system.hpp"
 #include "model/stiffness.hpp"
 
@@ -15,7 +16,7 @@ namespace fissure {
 
 ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory,
                                          const std::vector<double>& origin, bool reuse,
-                                         int krylov_limit, FactorPrecision precision)
+                                         int krylov_limit, FactorPrecision precision, bool nearest)
     : dynamics_(dynamics),
       arkode_memory_(arkode_memory),
       origin_(origin),
@@ -23,7 +24,13 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
       krylov_limit_(krylov_limit),
       factor_(precision),
       cg_(origin.size()) {
-  stiffness_ = two_hop_pattern(dynamics.model().families());
+  const Families& families = dynamics.model().families();
+  if (nearest) {
+    nearest_ = nearest_bonds(families, kNearestMembers);
+    stiffness_ = nearest_bond_pattern(families, nearest_);
+  } else {
+    stiffness_ = two_hop_pattern(families);
+  }
   system_ = stiffness_;
   diagonal_ = diagonal_positions(stiffness_);
   const auto& m = dynamics.mass();
@@ -74,8 +81,15 @@ void ReducedNewtonSystem::refresh(Refreshes::Reason reason, double gamma) {
   pending_ = Refreshes::none;
   hold_at(stage_time_);
   assembled_at_ = predicted_;
-  dynamics_.model().stiffness()->assemble_tangent(assembled_at_.data(), stiffness_, false);
-  projected_ = false;
+  if (!nearest_.empty()) {
+    // Only the matrix-free K changes with the fallback: the nearest matrix is SPD as it is.
+    dynamics_.model().stiffness()->assemble_nearest_stiffness(assembled_at_.data(), nearest_,
+                                                              stiffness_);
+    projected_ = reason == Refreshes::fallback;
+  } else {
+    dynamics_.model().stiffness()->assemble_tangent(assembled_at_.data(), stiffness_, false);
+    projected_ = false;
+  }
   factorize(gamma);
   factor_stage_ = stage_;
   if (reason == Refreshes::convergence) refreshed_in_stage_ = true;
@@ -99,7 +113,7 @@ void ReducedNewtonSystem::factorize(double gamma) {
   try {
     attempt();
   } catch (const RunError&) {
-    if (projected_) throw;
+    if (projected_ || !nearest_.empty()) throw;
     ++refreshes_.count[Refreshes::fallback];
     dynamics_.model().stiffness()->assemble_tangent(assembled_at_.data(), stiffness_, true);
     projected_ = true;
@@ -122,6 +136,7 @@ void ReducedNewtonSystem::solve(const double* b, double* x, double tol) {
   arkode_check(ARKStepGetCurrentGamma(arkode_memory_, &gamma), "ARKStepGetCurrentGamma");
   if (pending_ != Refreshes::none) refresh(pending_, gamma);
   double* dy = x;
+  if (!nearest_.empty()) return solve_with_nearest(b, gamma, tol, x);
   if (reuse_) {
     if (!fresh(gamma)) {
       linearize_stage();
@@ -210,6 +225,25 @@ void ReducedNewtonSystem::precondition(const double* r, double* z) {
 // expand, the first block row of that residual vanishes and the second is γ M⁻¹ r, r the
 // residual of (R); the held rows vanish too. A fixed relative tolerance would ignore ARKODE's
 // Newton tolerance, which rtol sets.
+// The nearest factor is never S: CG at every solve, once more after the refresh a failed CG
+// made (at this stage and γ, with K⁺ where it broke down).
+void ReducedNewtonSystem::solve_with_nearest(const double* b, double gamma, double tol, double* x) {
+  if (!reuse_ && !same_gamma(gamma)) {
+    ++refreshes_.count[Refreshes::step_size];
+    factorize(gamma);
+  }
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    linearize_stage();
+    reduced_rhs(b, gamma, true);
+    if (solve_by_cg(gamma, tol, x)) return expand(b, gamma, x);
+  }
+  throw RunError(fmt::format(
+      "arkode: CG on the stage system did not converge in integrator.refresh_krylov = {} "
+      "iterations with a fresh nearest factor; raise refresh_krylov or set "
+      "integrator.preconditioner: tangent",
+      krylov_limit_));
+}
+
 bool ReducedNewtonSystem::solve_by_cg(double gamma, double tol, double* dy) {
   auto done = [&](const double* r) {
     double sum = 0;

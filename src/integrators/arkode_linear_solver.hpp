@@ -16,6 +16,11 @@
 // integrator.refresh_krylov iterations or breaks down, when bonds broke, and when the factorization
 // is not SPD (then with K⁺). Without reuse, S is refactorized whenever γ changes, with the K of the
 // last assembly.
+//
+// With `nearest` (integrator.preconditioner, for large scenes) the factor is of S with the
+// nearest members' one-hop matrix (Stiffness::assemble_nearest_stiffness) in place of K: never S
+// itself, so every solve is CG on (R), refreshed as above (and, without reuse, at every γ
+// change); where CG breaks down (S with the exact K not SPD) the matrix-free K becomes K⁺.
 #include <sundials/sundials_linearsolver.h>
 
 #include <exception>
@@ -34,8 +39,9 @@ class ReducedNewtonSystem {
  public:
   // origin: y0, the positions ARKODE's displacement unknowns are measured from. reuse and
   // krylov_limit: integrator.reuse_factor and integrator.refresh_krylov.
+  // nearest: factorize the nearest members' matrix instead of the two-hop tangent.
   ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory, const std::vector<double>& origin,
-                      bool reuse, int krylov_limit, FactorPrecision precision);
+                      bool reuse, int krylov_limit, FactorPrecision precision, bool nearest);
   // x = (I − γJ)⁻¹ b, with ‖b − (I − γJ)x‖₂ ≤ tol where CG is used (solve_by_cg). ARKODE 6.4
   // does not call setup for a matrix-embedded solver, so the matrix is refreshed here: at the
   // first solve, after bonds broke and as the reuse policy says.
@@ -67,6 +73,8 @@ class ReducedNewtonSystem {
   // CG on (R) preconditioned by the factor; false when it needed more than the limit or broke
   // down (dy is then to be overwritten).
   bool solve_by_cg(double gamma, double tol, double* dy);
+  // x = (I − γJ)⁻¹ b by CG with the nearest factor.
+  void solve_with_nearest(const double* b, double gamma, double tol, double* x);
   // out = S v on free unknowns (v zero on held ones), 0 on held ones; K matrix-free.
   void apply_system(double gamma, const double* v, double* out);
   // z = the factor's solve of r, zero on held unknowns.
@@ -80,6 +88,7 @@ class ReducedNewtonSystem {
   const std::vector<double>& origin_;
   bool reuse_;
   int krylov_limit_;
+  std::vector<char> nearest_;         // per directed bond: kept (`nearest` only; else empty)
   SparseSymmetric stiffness_;         // K at the last assembly
   std::vector<double> assembled_at_;  // ... at these positions
   SparseSymmetric system_;            // S with held unknowns taken out

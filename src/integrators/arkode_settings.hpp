@@ -1,6 +1,7 @@
 #pragma once
 // The options of arkode (docs/integrators.md) and their parser: the method (an ARKODE table or
 // IMEX pair by name), the tolerances, fixed steps and the factor reuse of implicit stages.
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,7 +22,15 @@ struct ArkodeSettings final : IntegratorOptions {
   bool reuse_factor = false;
   int refresh_krylov = 40;  // refresh when one linear solve needs more Krylov iterations
   FactorPrecision factor_precision = FactorPrecision::single;  // of the kept CHOLMOD factor
+  // The matrix CHOLMOD factorizes for the implicit stages: the two-hop tangent (the stage matrix
+  // itself when fresh: one back-solve) or petsc_newton's `nearest` one-hop matrix (CG on the
+  // exact stage matrix at every solve); auto: tangent up to 10,000 particles, nearest above.
+  enum class Preconditioner { automatic, tangent, nearest };
+  Preconditioner preconditioner = Preconditioner::automatic;
 };
+
+// What auto picks for a scene of `particles` particles (tangent or nearest).
+ArkodeSettings::Preconditioner choose_arkode_preconditioner(std::size_t particles);
 
 // The keys under integrator: that are arkode's own, and their parser.
 const std::vector<std::string>& arkode_keys();

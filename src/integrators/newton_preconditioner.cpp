@@ -28,13 +28,6 @@ void shift_scalar(SparseSymmetric& a, const std::vector<int>& diagonal,
   shift_and_fix(a, diagonal, particle_mass, inertia, particle_fixed);
 }
 
-// The nearest preconditioner keeps this many nearest members of each family. Measured on the
-// glass cantilever (bench_implicit_step, backward Euler at 300× the explicit estimate, 127
-// members per interior family): CG iterations per Newton iteration 30 / 15 / 11 / 9 keeping
-// 12 / 20 / 30 / 45 members (6.5 with every member), and at 95,187 particles 20 members take
-// 7.2 s per step and 5.7 GB, 30 members 6.3 s and 7.9 GB.
-constexpr int kNearestMembers = 20;
-
 // gamg's matrix keeps more members: a multigrid cycle costs about linearly in its entries where
 // a factor's fill grows faster. Measured as above (bench_implicit_step, gamg): CG iterations per
 // step 28 / 23 / 19 keeping 20 / 30 / 45 members at 7,948 particles (28.6 / 27.1 / 30.2 µs per

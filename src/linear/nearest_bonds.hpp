@@ -10,6 +10,13 @@
 
 namespace fissure {
 
+// The members kept by the `nearest` preconditioner (petsc_newton's and arkode's). Measured on the
+// glass cantilever (bench_implicit_step, backward Euler at 300× the explicit estimate, 127
+// members per interior family): CG iterations per Newton iteration 30 / 15 / 11 / 9 keeping
+// 12 / 20 / 30 / 45 members (6.5 with every member), and at 95,187 particles 20 members take
+// 7.2 s per step and 5.7 GB, 30 members 6.3 s and 7.9 GB.
+constexpr int kNearestMembers = 20;
+
 // One flag per directed bond: whether the bond joins particles of which one counts the other
 // among its `members` nearest family members (ties at the last length kept), so that
 // kept[b] == kept[reverse[b]]. A family of at most `members` members keeps every bond.

@@ -138,7 +138,7 @@ int implicit_rhs(realtype t, N_Vector u, N_Vector u_dot, void* data) {
 // half the time (tens of γ changes, ArkodeFactorReuse.GivesTheTrajectory...): every solve, CG or
 // back-solve, meets ARKODE's tol on the stage system at the current γ. A solve that returned
 // the stale factor's answer, or CG on S at the factor's γ, misses it by far at a new γ.
-TEST(ArkodeFactorReuse, EverySolveMeetsArkodesToleranceOnTheCurrentStageSystem) {
+void check_every_solve(bool nearest) {
   auto v = test::make_vibration();
   SUNContext context;
   ASSERT_EQ(SUNContext_Create(nullptr, &context), 0);
@@ -159,7 +159,7 @@ TEST(ArkodeFactorReuse, EverySolveMeetsArkodesToleranceOnTheCurrentStageSystem) 
   ASSERT_NE(memory, nullptr);
   checked.memory = memory;
   ReducedNewtonSystem reduced(*v->dynamics, memory, checked.origin, true, 40,
-                              FactorPrecision::single);
+                              FactorPrecision::single, nearest);
   std::exception_ptr error;
   checked.inner = make_reduced_linear_solver(context, &reduced, &error);
   SUNLinearSolver wrapper = SUNLinSolNewEmpty(context);
@@ -183,11 +183,63 @@ TEST(ArkodeFactorReuse, EverySolveMeetsArkodesToleranceOnTheCurrentStageSystem) 
   std::printf("\n");
   EXPECT_GT(checked.solves, 500);
   EXPECT_LE(checked.worst, 1.0);
+  // The nearest factor is never the stage matrix: every solve is CG.
+  if (nearest) {
+    double krylov = 0;
+    for (const auto& [name, value] : stats)
+      if (name == "krylov_iterations") krylov = value;
+    EXPECT_GE(krylov, double(checked.solves));
+  }
   ARKStepFree(&memory);
   SUNLinSolFreeEmpty(wrapper);
   SUNLinSolFree(checked.inner);
   N_VDestroy(u);
   SUNContext_Free(&context);
+}
+
+TEST(ArkodeFactorReuse, EverySolveMeetsArkodesToleranceOnTheCurrentStageSystem) {
+  check_every_solve(false);
+}
+
+// The same with the nearest members' one-hop factor preconditioning CG (preconditioner: nearest).
+TEST(ArkodeFactorReuse, EveryNearestSolveMeetsArkodesToleranceOnTheCurrentStageSystem) {
+  check_every_solve(true);
+}
+
+// preconditioner: nearest reaches the trajectory of the two-hop tangent's factor within the bound
+// of the first test (both meet ARKODE's tolerances), with reuse and without (then refreshed at
+// every γ change, and counted).
+TEST(ArkodeFactorReuse, NearestGivesTheTrajectoryOfTheTangentFactor) {
+  auto v = test::make_vibration();
+  for (bool reuse : {true, false}) {
+    ArkodeSettings tangent = adaptive("ARK436L2SA", reuse);
+    tangent.preconditioner = ArkodeSettings::Preconditioner::tangent;
+    ArkodeSettings nearest = tangent;
+    nearest.preconditioner = ArkodeSettings::Preconditioner::nearest;
+    auto a = make(nearest);
+    auto b = make(tangent);
+    const State x = run(*v, *a, v->initial, kEnd);
+    const State y = run(*v, *b, v->initial, kEnd);
+    const double reach = test::max_difference(v->initial.position, y.position);
+    const double difference = test::max_difference(x.position, y.position);
+    const double bound = 20 * (1e-6 * reach + 1e-9);
+    std::printf("reuse %d: nearest vs tangent factor: max |dy| = %.2e (%.3f of the bound)\n", reuse,
+                difference, difference / bound);
+    test::print_statistics("  nearest", *a);
+    test::print_statistics("  tangent", *b);
+    EXPECT_LT(difference, bound) << reuse;
+    EXPECT_GT(test::statistic(*a, "krylov_iterations"), 0) << reuse;
+    EXPECT_EQ(test::statistic(*a, "factorizations"), 1 + test::refreshes(*a)) << reuse;
+    if (!reuse) EXPECT_GT(test::statistic(*a, "refreshes_step_size"), 0);
+  }
+}
+
+// auto: the two-hop tangent's factor up to 10,000 particles, the nearest members' above.
+TEST(ArkodeFactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndNearestAbove) {
+  using P = ArkodeSettings::Preconditioner;
+  EXPECT_EQ(choose_arkode_preconditioner(857), P::tangent);
+  EXPECT_EQ(choose_arkode_preconditioner(10000), P::tangent);
+  EXPECT_EQ(choose_arkode_preconditioner(10001), P::nearest);
 }
 
 // Bonds broken mid-run (every bond of particle 0) and reported: the next solve refreshes the

@@ -144,6 +144,18 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_TRUE(arkode(parse_config(kMinimal, "scene.yaml",
                                   {"integrator.type=arkode", "integrator.reuse_factor=true"}))
                   .reuse_factor);
+  // arkode's preconditioner: tangent or nearest (auto by size); petsc_newton's others are not its.
+  EXPECT_EQ(arkode(parse_config(kMinimal, "scene.yaml",
+                                {"integrator.type=arkode", "integrator.preconditioner=nearest"}))
+                .preconditioner,
+            ArkodeSettings::Preconditioner::nearest);
+  EXPECT_EQ(arkode(parse_config(kMinimal, "scene.yaml", {"integrator.type=arkode"})).preconditioner,
+            ArkodeSettings::Preconditioner::automatic);
+  const std::string gamg =
+      error_of(kMinimal, {"integrator.type=arkode", "integrator.preconditioner=gamg"});
+  EXPECT_NE(gamg.find("scene.yaml"), std::string::npos) << gamg;
+  EXPECT_NE(gamg.find("integrator.preconditioner"), std::string::npos) << gamg;
+  EXPECT_NE(gamg.find("nearest"), std::string::npos) << gamg;
   const std::string explicit_type = error_of(kMinimal, {"integrator.reuse_factor=false"});
   EXPECT_NE(explicit_type.find("is an option of petsc_newton and arkode"), std::string::npos)
       << explicit_type;
