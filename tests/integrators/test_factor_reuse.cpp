@@ -47,6 +47,18 @@ double reach(const test::Vibration& v, const std::vector<double>& y) {
   return test::max_difference(v.initial.position, y);
 }
 
+// The largest difference of a's positions from b's as a fraction of b's motion, printed with
+// both runs' counters.
+double compare(const test::Vibration& v, const char* scheme, const Trajectory& a,
+               const std::string& a_name, const Trajectory& b, const std::string& b_name) {
+  const double relative = test::max_difference(a.position, b.position) / reach(v, b.position);
+  std::printf("%s: %s vs %s: max |dy| = %.2e of the motion\n", scheme, a_name.c_str(),
+              b_name.c_str(), relative);
+  test::print_statistics(("  " + a_name).c_str(), *a.integrator);
+  test::print_statistics(("  " + b_name).c_str(), *b.integrator);
+  return relative;
+}
+
 // 40 steps at 20× the explicit estimate. A fresh factorization at every Newton iteration is
 // Newton's method; reuse is modified Newton with the same stopping rule, so both stop within
 // 1e-10 of each stage's first residual of the same minimiser: measured differences are far below
@@ -60,12 +72,7 @@ TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
     fresh.reuse_factor = false;
     const Trajectory reused = simulate(*v, newton(scheme), 40, dt);
     const Trajectory every = simulate(*v, fresh, 40, dt);
-    const double difference = test::max_difference(reused.position, every.position);
-    std::printf("%s: reuse vs fresh factor: max |dy| = %.2e of the motion\n", scheme,
-                difference / reach(*v, every.position));
-    test::print_statistics("  reuse", *reused.integrator);
-    test::print_statistics("  fresh", *every.integrator);
-    EXPECT_LT(difference, 1e-7 * reach(*v, every.position)) << scheme;
+    EXPECT_LT(compare(*v, scheme, reused, "reuse", every, "fresh"), 1e-7) << scheme;
     EXPECT_EQ(test::statistic(*every.integrator, "factorizations"),
               test::statistic(*every.integrator, "newton_iterations"))
         << scheme;
@@ -216,12 +223,7 @@ TEST(FactorReuse, LinearSolvesStopAtTheNewtonTarget) {
     fixed.petsc_options += " -ksp_rtol 1e-3";
     const Trajectory a = simulate(*v, adaptive, 20, dt);
     const Trajectory f = simulate(*v, fixed, 20, dt);
-    const double difference = test::max_difference(a.position, f.position);
-    std::printf("%s: to target vs fixed -ksp_rtol: max |dy| = %.2e of the motion\n", scheme,
-                difference / reach(*v, f.position));
-    test::print_statistics("  to target", *a.integrator);
-    test::print_statistics("  fixed", *f.integrator);
-    EXPECT_LT(difference, 1e-7 * reach(*v, f.position)) << scheme;
+    EXPECT_LT(compare(*v, scheme, a, "to target", f, "fixed -ksp_rtol"), 1e-7) << scheme;
     EXPECT_GT(test::statistic(*a.integrator, "linear_solves_to_target"), 0) << scheme;
     EXPECT_EQ(test::statistic(*f.integrator, "linear_solves_to_target"), 0) << scheme;
     EXPECT_LT(test::statistic(*a.integrator, "krylov_iterations"),
