@@ -104,7 +104,7 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
   petsc_check(PCSetOptionsPrefix(pc_, "precond_"), "PCSetOptionsPrefix");
   if (kind == Kind::gamg) {
     petsc_check(PCSetType(pc_, PCGAMG), "PCSetType");
-    // Drop the weakest couplings from the aggregation graph: 26 against 34 µs per particle with
+    // Drop the weakest couplings from the aggregation graph: 26 against 46 µs per particle with
     // PETSc's default (none dropped) at 7,948 particles (bench_implicit_step, docs/integrators.md).
     const PetscReal threshold[] = {kGamgThreshold};
     petsc_check(PCGAMGSetThreshold(pc_, const_cast<PetscReal*>(threshold), 1),
