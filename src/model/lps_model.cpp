@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
+#include "parallel/halo.hpp"
 #include "scene/scene.hpp"
 
 namespace fissure {
@@ -15,6 +18,7 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
                    SurfaceCorrection surface_correction, const PlasticPoints* plasticity)
     : Model(particles, families, std::move(materials)), plastic_(plasticity != nullptr) {
   const int n = particles.count();
+  row_end_ = n;
   const auto& off = families.offsets;
   const auto& nbr = families.neighbors;
   const auto& xi = families.reference_length;
@@ -115,14 +119,13 @@ void LpsModel::set_up_plasticity(const PlasticPoints& plasticity) {
 // and the per-particle terms of the force: D_i = κθ_i − (B_i/3) Σ_j ω ê_ij |ξ| V_j and
 // S_i = B_i (θ_i − θ^p_i)/3, with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3 (notes §6).
 template <bool Plastic>
-void LpsModel::compute_dilatation(const double* y) {
+void LpsModel::compute_dilatation(const double* y, int begin, int end) {
   if constexpr (Plastic)
     if (plastic_terms_current(y)) return;
-  const int n = particles_.count();
   const double* V = particles_.volume.data();
   const double* ep = plastic_extension_.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = begin; i < end; ++i) {
     // a row that never flowed has e^p = +0 on its bonds: the same bits without reading them
     const lps::DilatationSums sums = kernels_.dilatation(
         bond_row(i), i, y, V, Plastic && plastic_row_[i] ? ep : nullptr, nullptr);
@@ -167,11 +170,14 @@ void LpsModel::remember_plastic_terms(const double* y) {
 // V_i W_i of energy_density from the same pass over row i's bonds.
 template <bool Plastic, bool Energy>
 void LpsModel::compute_forces(const double* y, double* f, double* energy) {
-  compute_dilatation<Plastic>(y);
-  const int n = particles_.count();
+  compute_dilatation<Plastic>(y, row_begin_, row_end_);
+  // the force pass reads D_j, B_j, S_j and V_j of every family member: ghosts' from their ranks
+  static_assert(sizeof(NeighbourTerms) == 4 * sizeof(double) &&
+                std::is_standard_layout_v<NeighbourTerms>);
+  if (halo_) halo_->fill(reinterpret_cast<double*>(terms_.data()), 4);
   const NeighbourTerms* terms = terms_.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     const double theta = dilatation_[i];
     const double elastic_theta = Plastic ? theta - plastic_dilatation_[i] : theta;  // θ_i − θ^p_i
     const lps::BondRow row = bond_row(i);
@@ -250,8 +256,19 @@ double LpsModel::forces_and_energy(const double* y, double* f) {
     compute_forces<false, true>(y, f, energy_.data());
   double total = 0;
 #pragma omp parallel for reduction(+ : total) schedule(static)
-  for (std::size_t i = 0; i < energy_.size(); ++i) total += energy_[i];
+  for (int i = row_begin_; i < row_end_; ++i) total += energy_[i];
   return total;
+}
+
+void LpsModel::distribute(const Halo& halo) {
+  if (plastic_)
+    throw std::invalid_argument(
+        "material.plasticity cannot be evaluated over several ranks yet (docs/mpi.md)");
+  if (halo.end() > particles_.count() || halo.begin() > halo.end())
+    throw std::invalid_argument("the halo's rows are not this scene's");
+  halo_ = &halo;
+  row_begin_ = halo.begin();
+  row_end_ = halo.end();
 }
 
 // θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped), summed as compute_dilatation sums it.
@@ -265,9 +282,9 @@ void LpsModel::dilatation(const double* y, double* theta) const {
 
 void LpsModel::update_dilatation(const double* y) {
   if (plastic_)
-    compute_dilatation<true>(y);
+    compute_dilatation<true>(y, 0, particles_.count());
   else
-    compute_dilatation<false>(y);
+    compute_dilatation<false>(y, 0, particles_.count());
 }
 
 // W_i = ½κθ_i² + ½B_i Σ_j w_ij ê_ij² V_j with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3

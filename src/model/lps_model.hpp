@@ -51,10 +51,12 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   double rows_energy(const double* y, const std::vector<int>& rows) override;
   // With surface_correction: full, what the deviatoric calibration reached; else empty.
   std::vector<std::pair<std::string, double>> statistics() const override { return statistics_; }
+  void distribute(const Halo& halo) override;
 
  private:
+  // Rows [begin, end) of θ and of the force terms.
   template <bool Plastic>
-  void compute_dilatation(const double* y);
+  void compute_dilatation(const double* y, int begin, int end);
   // θ_i and row i's force terms from θ_i, θ_i − θ^p_i and Σ_j w (e − e^p)|ξ| V_j.
   void set_terms(int i, double theta, double elastic_theta, double moment);
   // With plasticity: whether dilatation_ and terms_ hold compute_dilatation<true>(y) at this
@@ -107,6 +109,10 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // V_k and shift B_j (θ_j − θ^p_j)/3 per force call, deviatoric B_j and volume V_j.
   using NeighbourTerms = lps::NeighbourTerms;
   std::vector<NeighbourTerms> terms_;
+  // The rows forces() evaluates: all, or this rank's (distribute()), whose ghosts' terms the
+  // halo fills between the two passes.
+  int row_begin_ = 0, row_end_ = 0;
+  const Halo* halo_ = nullptr;
   // The row passes this CPU runs (lps_rows.hpp), chosen at load.
   lps::RowKernels kernels_ = lps::row_kernels();
   lps::BondRow bond_row(int i) const;

@@ -1,5 +1,7 @@
 #include "model/model.hpp"
 
+#include <stdexcept>
+
 namespace fissure {
 
 double Model::elastic_energy(const double* y) {
@@ -31,6 +33,11 @@ double influence(const MaterialPoints& m, int i, const double* xi, double xi_len
   double g[3];
   for (int r = 0; r < 3; ++r) g[r] = G[3 * r] * xi[0] + G[3 * r + 1] * xi[1] + G[3 * r + 2] * xi[2];
   return m.horizon[i] / std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);  // Eq 17
+}
+
+void Model::distribute(const Halo&) {
+  throw std::invalid_argument("material.model " + name() +
+                              " cannot be evaluated over several ranks yet (docs/mpi.md)");
 }
 
 }  // namespace fissure

@@ -18,6 +18,7 @@
 namespace fissure {
 
 struct Scene;
+class Halo;
 
 // Per-particle material constants, expanded from the bodies.
 struct MaterialPoints {
@@ -100,6 +101,13 @@ class Model {
   // What the model's set-up reached, by name (summary.json model_statistics, `fissure info`):
   // e.g. the LPS deviatoric calibration's exact rows. Empty for most models.
   virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
+  // From now on forces() and forces_and_energy() evaluate only the rows this rank owns
+  // (halo.begin() to halo.end()): they read the positions of those rows and of the halo's
+  // ghosts, write those rows of f, and forces_and_energy() returns this rank's share of Π;
+  // whatever a row needs from a ghost's row comes through the halo (issue 18; docs/mpi.md).
+  // The halo must outlive the model. Other evaluations still evaluate every row. A model that
+  // cannot be distributed throws std::invalid_argument saying why.
+  virtual void distribute(const Halo& halo);
 
  protected:
   const Particles& particles_;

@@ -1,0 +1,144 @@
+// Forces over several ranks (issue 18, acceptance: "forces at a perturbed state bitwise equal to
+// one rank"): each rank evaluates its own rows from its rows' and its ghosts' positions alone,
+// and gets the bits one rank gets for them, with broken bonds and with both surface
+// corrections. The reference is the whole scene evaluated on each rank by an undistributed model.
+#include <gtest/gtest.h>
+#include <petscsys.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+#include "parallel/halo.hpp"
+#include "parallel/ownership.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+int ranks() {
+  int size = 0;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  return size;
+}
+
+Scene slab(const std::string& material, const std::string& model = "lps") {
+  return test::block_scene({.size = {0.3, 0.1, 0.05},
+                            .resolution = 0.02,
+                            .bulk = 2.0e6,
+                            .shear = 1.0e6,
+                            .model = model,
+                            .material = material});
+}
+
+// A general deformation plus a different small displacement on every particle.
+std::vector<double> perturbed(const Particles& p) {
+  const double F[9] = {1.02, 0.03, -0.01, 0.01, 0.97, 0.02, -0.02, 0.01, 1.01};
+  std::vector<double> y = test::deform(p, F);
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] += 1e-4 * std::sin(12.9898 * double(k));
+  return y;
+}
+
+// Every bond crossing x = 0.15 below mid-height (a pre-crack across the ranks' cuts).
+void break_crack_bonds(const Scene& scene, Model& model) {
+  const auto& x = scene.particles.reference;
+  const Families& f = scene.families;
+  for (int i = 0; i < scene.particles.count(); ++i)
+    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+      const int j = f.neighbors[b];
+      if ((x[3 * i] - 0.15) * (x[3 * j] - 0.15) < 0 && x[3 * i + 1] + x[3 * j + 1] < 0.1)
+        model.break_bond(i, b);
+    }
+}
+
+struct Case {
+  std::string name, material;
+  bool cracked;
+};
+
+TEST(DistributedForces, EqualOneRankBitwise) {
+  for (const Case& c :
+       {Case{"intact", "", false}, Case{"pre-cracked", "", true},
+        Case{"full surface correction, pre-cracked", ", surface_correction: full", true},
+        Case{"no surface correction", ", surface_correction: none", false}}) {
+    SCOPED_TRACE(c.name);
+    const Scene scene = slab(c.material);
+    const int n = scene.particles.count();
+    const std::vector<double> y = perturbed(scene.particles);
+    auto whole = make_model(scene);
+    auto part = make_model(scene);
+    if (c.cracked) {
+      break_crack_bonds(scene, *whole);
+      break_crack_bonds(scene, *part);
+    }
+    std::vector<double> expected(3 * std::size_t(n));
+    const double energy = whole->forces_and_energy(y.data(), expected.data());
+
+    const Halo halo(PETSC_COMM_WORLD, scene.families,
+                    split_rows_by_bonds(scene.families.offsets, ranks()));
+    part->distribute(halo);
+    // this rank knows its own rows' positions only; the halo brings the ghosts'
+    std::vector<double> known(y.size(), std::numeric_limits<double>::quiet_NaN());
+    std::copy(y.begin() + 3 * halo.begin(), y.begin() + 3 * halo.end(),
+              known.begin() + 3 * halo.begin());
+    halo.fill(known.data(), 3);
+    std::vector<double> force(y.size(), 0.0);
+    const double share = part->forces_and_energy(known.data(), force.data());
+    // on several ranks, rows that read ghosts' positions and terms (a missing exchange of either
+    // changes their forces)
+    int boundary_rows = 0;
+    for (int i = halo.begin(); i < halo.end(); ++i) {
+      bool reads_ghost = false;
+      for (int b = scene.families.offsets[i]; b < scene.families.offsets[i + 1]; ++b)
+        reads_ghost |=
+            scene.families.neighbors[b] < halo.begin() || scene.families.neighbors[b] >= halo.end();
+      boundary_rows += reads_ghost;
+    }
+    if (ranks() > 1) {
+      EXPECT_GT(boundary_rows, 0);
+    }
+    for (int i = halo.begin(); i < halo.end(); ++i)
+      ASSERT_EQ(std::memcmp(&force[3 * i], &expected[3 * i], 3 * sizeof(double)), 0)
+          << "particle " << i << ": " << force[3 * i] << " against " << expected[3 * i];
+    // forces() gives the same bits as forces_and_energy()
+    std::vector<double> plain(y.size(), 0.0);
+    part->forces(known.data(), plain.data());
+    EXPECT_EQ(plain, force);
+    // the ranks' shares of Π add up to one rank's Π (summed in another order: to round-off)
+    double total = 0;
+    MPI_Allreduce(&share, &total, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    EXPECT_NEAR(total, energy, 1e-12 * std::abs(energy));
+    EXPECT_GT(std::abs(energy), 0.0);
+  }
+}
+
+// The message of the std::invalid_argument `call` throws, or "" if it returns.
+template <class Call>
+std::string refusal(Call&& call) {
+  try {
+    call();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DistributedForces, ModelsThatCannotBeDistributedSaySo) {
+  const Halo halo(PETSC_COMM_WORLD, slab("").families,
+                  split_rows_by_bonds(slab("").families.offsets, ranks()));
+  const Scene plastic = slab(", plasticity: {yield_stress: 1.0e4}");
+  auto model = make_model(plastic);
+  EXPECT_EQ(refusal([&] { model->distribute(halo); }),
+            "material.plasticity cannot be evaluated over several ranks yet (docs/mpi.md)");
+  const Scene paper = slab("", "paper");
+  auto paper_model = make_model(paper);
+  EXPECT_EQ(refusal([&] { paper_model->distribute(halo); }),
+            "material.model paper cannot be evaluated over several ranks yet (docs/mpi.md)");
+}
+
+}  // namespace
+}  // namespace fissure

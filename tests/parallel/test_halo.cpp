@@ -1,0 +1,84 @@
+// The halo (issue 18, item 1): each rank's ghosts are exactly the family members of its rows
+// that it does not own, and a fill gives each of them its owner's values and touches nothing
+// else.
+#include <gtest/gtest.h>
+#include <petscsys.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <vector>
+
+#include "parallel/halo.hpp"
+#include "parallel/ownership.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+int ranks() {
+  int size = 0;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  return size;
+}
+
+Scene slab() {
+  return test::block_scene(
+      {.size = {0.3, 0.1, 0.05}, .resolution = 0.02, .bulk = 1.0e6, .shear = 1.0e6});
+}
+
+TEST(Halo, GhostsAreTheFamilyMembersOwnedElsewhere) {
+  const Scene scene = slab();
+  const Families& families = scene.families;
+  const Halo halo(PETSC_COMM_WORLD, families, split_rows_by_bonds(families.offsets, ranks()));
+  std::set<int> expected;
+  for (int i = halo.begin(); i < halo.end(); ++i)
+    for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
+      if (families.neighbors[b] < halo.begin() || families.neighbors[b] >= halo.end())
+        expected.insert(families.neighbors[b]);
+  EXPECT_EQ(halo.ghosts(), std::vector<int>(expected.begin(), expected.end()));
+  if (ranks() > 1) {
+    EXPECT_FALSE(halo.ghosts().empty());  // a slab cut across has ghosts
+  }
+}
+
+// Each rank writes a value only its own rows can know (rank and id); after the fill every
+// ghost holds its owner's value, every other entry it does not own keeps NaN.
+TEST(Halo, FillCopiesTheOwnersValuesIntoTheGhostsOnly) {
+  const Scene scene = slab();
+  const int n = scene.particles.count();
+  const std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, ranks());
+  const Halo halo(PETSC_COMM_WORLD, scene.families, boundaries);
+  for (const int width : {1, 3, 4}) {
+    SCOPED_TRACE(width);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> values(std::size_t(n) * width, nan);
+    const auto value = [&](int i, int k) {
+      return 1000.0 * owner_of(boundaries, i) + i + 0.125 * k;
+    };
+    for (int i = halo.begin(); i < halo.end(); ++i)
+      for (int k = 0; k < width; ++k) values[std::size_t(i) * width + k] = value(i, k);
+    halo.fill(values.data(), width);
+    const std::set<int> ghosts(halo.ghosts().begin(), halo.ghosts().end());
+    for (int i = 0; i < n; ++i) {
+      const bool known = ghosts.count(i) || (i >= halo.begin() && i < halo.end());
+      for (int k = 0; k < width; ++k) {
+        const double v = values[std::size_t(i) * width + k];
+        if (known)
+          ASSERT_EQ(v, value(i, k)) << "particle " << i;
+        else
+          ASSERT_TRUE(std::isnan(v)) << "particle " << i;
+      }
+    }
+  }
+}
+
+TEST(Halo, RefusesBoundariesOfAnotherScene) {
+  const Scene scene = slab();
+  std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, ranks());
+  boundaries.back() += 1;
+  EXPECT_THROW(Halo(PETSC_COMM_WORLD, scene.families, boundaries), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fissure
