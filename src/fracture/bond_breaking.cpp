@@ -4,6 +4,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "fracture/initial_cracks.hpp"
 #include "model/plastic_flow.hpp"
@@ -19,6 +20,7 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
   horizon_.resize(n);
   intact_.resize(n);
   damage_.assign(n, 0.0);
+  row_end_ = n;
   for (int i = 0; i < n; ++i) {
     const FractureSettings& f = scene.config.bodies[p.body[i]].material.fracture;
     critical_stretch_[i] = f.enabled ? f.critical_stretch : std::numeric_limits<double>::infinity();
@@ -135,28 +137,39 @@ std::size_t BondBreaking::find_exact(const double* y, int i) {
 // of Δy (any common c bounds a bond's change, |Δ(y_j − y_i)| ≤ d_i + d_j, and the mean removes
 // a common translation); returns D = max d_k (NaN where y is not finite).
 double BondBreaking::update_drift(const double* y) {
-  const int n = static_cast<int>(intact_.size());
+  const int begin = row_begin_, end = row_end_;
   const double* snapshot = snapshot_.data();
   double c0 = 0, c1 = 0, c2 = 0;
 #pragma omp parallel for reduction(+ : c0, c1, c2) schedule(static)
-  for (int k = 0; k < n; ++k) {
+  for (int k = begin; k < end; ++k) {
     c0 += y[3 * k] - snapshot[3 * k];
     c1 += y[3 * k + 1] - snapshot[3 * k + 1];
     c2 += y[3 * k + 2] - snapshot[3 * k + 2];
   }
-  c0 /= n;
-  c1 /= n;
-  c2 /= n;
+  const int count = std::max(end - begin, 1);
+  c0 /= count;
+  c1 /= count;
+  c2 /= count;
+  const auto drift = [&](int k) {
+    const double d0 = y[3 * k] - snapshot[3 * k] - c0, d1 = y[3 * k + 1] - snapshot[3 * k + 1] - c1,
+                 d2 = y[3 * k + 2] - snapshot[3 * k + 2] - c2;
+    return drift_[k] = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+  };
   double largest = 0;
   bool finite = true;
 #pragma omp parallel for reduction(max : largest) reduction(&& : finite) schedule(static)
-  for (int k = 0; k < n; ++k) {
-    const double d0 = y[3 * k] - snapshot[3 * k] - c0, d1 = y[3 * k + 1] - snapshot[3 * k + 1] - c1,
-                 d2 = y[3 * k + 2] - snapshot[3 * k + 2] - c2;
-    drift_[k] = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-    finite = finite && std::isfinite(drift_[k]);
-    largest = std::max(largest, drift_[k]);
+  for (int k = begin; k < end; ++k) {
+    const double d = drift(k);
+    finite = finite && std::isfinite(d);
+    largest = std::max(largest, d);
   }
+  // a bond to a ghost j changes by at most d_i + d_j: D bounds the ghosts' d_j too
+  if (halo_)
+    for (const int j : halo_->ghosts()) {
+      const double d = drift(j);
+      finite = finite && std::isfinite(d);
+      largest = std::max(largest, d);
+    }
   return finite ? largest : std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -177,12 +190,12 @@ bool BondBreaking::prefilter_row(const double* y, int i, double drift_bound) {
 // break either: their exceeded_ stay 0, as apply() leaves them. A full check, with new
 // snapshot, when more than a quarter of the rows would need the prefilter.
 std::size_t BondBreaking::find(const double* y) {
-  const int n = static_cast<int>(intact_.size());
+  const int begin = row_begin_, end = row_end_, n = end - begin;
   std::size_t exceeded = 0;
   exceeding_.clear();
   if (prefilter_.empty()) {
 #pragma omp parallel for reduction(+ : exceeded) schedule(static)
-    for (int i = 0; i < n; ++i) exceeded += find_exact(y, i);
+    for (int i = begin; i < end; ++i) exceeded += find_exact(y, i);
     return found(exceeded);
   }
   double largest = 0;
@@ -191,17 +204,17 @@ std::size_t BondBreaking::find(const double* y) {
     largest = update_drift(y);
     int near = 0;
 #pragma omp parallel for reduction(+ : near) schedule(static)
-    for (int i = 0; i < n; ++i) near += !(slack_[i] > drift_[i] + largest);
+    for (int i = begin; i < end; ++i) near += !(slack_[i] > drift_[i] + largest);
     full = !(near <= n / 4);
   }
   if (full) {
-    snapshot_.assign(y, y + 3 * static_cast<std::size_t>(n));
+    snapshot_.assign(y, y + 3 * intact_.size());
     std::fill(drift_.begin(), drift_.end(), 0.0);
     largest = 0;
     full_check_due_ = false;
   }
 #pragma omp parallel for reduction(+ : exceeded) schedule(dynamic, 256)
-  for (int i = 0; i < n; ++i) {
+  for (int i = begin; i < end; ++i) {
     if (!full && slack_[i] > drift_[i] + largest) continue;
     if (prefilter_row(y, i, drift_[i] + largest)) exceeded += find_exact(y, i);
   }
@@ -216,7 +229,17 @@ std::size_t BondBreaking::found(std::size_t exceeded) {
   for (const int i : exceeding_) {
     changing_.push_back(i);
     for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
-      if (exceeded_[b]) changing_.push_back(families_.neighbors[b]);
+      if (exceeded_[b] && owned(families_.neighbors[b]))
+        changing_.push_back(families_.neighbors[b]);
+  }
+  // the rows sharing a pair with a ghost's row whose criterion was exceeded there
+  if (reverse_exceeded_) {
+    reverse_exceeded_->fill(exceeded_.data(), 1);
+    for (const int b : shared_bonds_)
+      if (exceeded_[families_.reverse[b]]) {
+        const auto row = std::upper_bound(families_.offsets.begin(), families_.offsets.end(), b);
+        changing_.push_back(static_cast<int>(row - families_.offsets.begin()) - 1);
+      }
   }
   std::sort(changing_.begin(), changing_.end());
   changing_.erase(std::unique(changing_.begin(), changing_.end()), changing_.end());
@@ -236,7 +259,7 @@ std::size_t BondBreaking::apply() {
     for (int b = off[i]; b < off[i + 1]; ++b)
       if (!broken_[b] && (exceeded_[b] || exceeded_[families_.reverse[b]])) {
         remove(i, b);
-        ++removed;
+        removed += owned(families_.neighbors[b]) ? 1 : 2;  // a pair shared: counted here whole
         changed = true;
       }
     if (changed) {
@@ -249,24 +272,53 @@ std::size_t BondBreaking::apply() {
   std::sort(changed_.begin(), changed_.end());
   for (const int i : exceeding_)
     std::fill(exceeded_.begin() + off[i], exceeded_.begin() + off[i + 1], std::uint8_t{0});
+  for (const int b : shared_bonds_) exceeded_[families_.reverse[b]] = 0;
   exceeding_.clear();
   broken_pairs_ += removed / 2;
   return removed / 2;
 }
 
 void BondBreaking::restore(const std::vector<std::uint8_t>& broken) {
-  const int n = static_cast<int>(intact_.size());
   std::size_t total = 0;
-  for (int i = 0; i < n; ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {
       if (broken[b] && !broken_[b]) remove(i, b);
-      total += broken_[b];
+      total += broken_[b] ? (owned(families_.neighbors[b]) ? 1 : 2) : 0;
     }
     update_damage(i);
     if (!prefilter_.empty()) update_prefilter(i);
   }
   full_check_due_ = true;
   changed_.clear();
+  broken_pairs_ = total / 2;
+}
+
+void BondBreaking::distribute(const Halo& halo) {
+  if (halo.end() > static_cast<int>(intact_.size()) || halo.begin() > halo.end())
+    throw std::invalid_argument("the halo's rows are not this scene's");
+  halo_ = &halo;
+  row_begin_ = halo.begin();
+  row_end_ = halo.end();
+  // Bond b of an owned row pairs with bond reverse[b] of row j: owned by j's rank, whose bonds
+  // are the CSR range of its rows.
+  shared_bonds_.clear();
+  std::vector<int> reverses;
+  for (int i = row_begin_; i < row_end_; ++i)
+    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+      if (!owned(families_.neighbors[b])) {
+        shared_bonds_.push_back(b);
+        reverses.push_back(families_.reverse[b]);
+      }
+  std::sort(reverses.begin(), reverses.end());
+  std::vector<int> bond_boundaries;
+  for (const int row : halo.boundaries()) bond_boundaries.push_back(families_.offsets[row]);
+  reverse_exceeded_ =
+      std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries), std::move(reverses));
+  full_check_due_ = true;
+  std::size_t total = 0;
+  for (int i = row_begin_; i < row_end_; ++i)
+    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
+      total += broken_[b] ? (owned(families_.neighbors[b]) ? 1 : 2) : 0;
   broken_pairs_ = total / 2;
 }
 

@@ -4,10 +4,13 @@
 // damage φ_i = 1 − n_i/N_i follows. It never runs inside a force evaluation.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "fracture/prefilter_room.hpp"
 #include "model/model.hpp"
+#include "parallel/halo.hpp"
+#include "parallel/index_exchange.hpp"
 #include "scene/scene.hpp"
 
 namespace fissure {
@@ -16,6 +19,14 @@ class BondBreaking {
  public:
   // Removes the bonds that cross the scene's initial cracks.
   BondBreaking(const Scene& scene, Model& model);
+  // From now on find() and apply() test and change only the rows this rank owns (halo.begin()
+  // to halo.end()), reading their positions and the ghosts' (issue 18; docs/mpi.md): a pair
+  // whose rows live on two ranks breaks on both in the same call, as each rank learns through
+  // the halo's ranks whether the other row's criterion was exceeded. Counts (run(), apply(),
+  // broken_bonds()) are then this rank's: its rows' broken bonds, a pair shared with another
+  // rank counted on each. Damage is kept for the owned rows only. Collective; the halo must
+  // outlive this.
+  void distribute(const Halo& halo);
   // Breaks every intact bond whose criterion exceeds s_c in either of its rows; returns how many
   // bonds (pairs) broke, so an integrator can be told that the bond set changed.
   std::size_t run(const double* y);
@@ -48,6 +59,7 @@ class BondBreaking {
   bool prefilter_row(const double* y, int i, double drift_bound);
   std::size_t find_exact(const double* y, int i);
   std::size_t found(std::size_t exceeded);
+  bool owned(int i) const { return i >= row_begin_ && i < row_end_; }
 
   const Families& families_;
   Model& model_;
@@ -73,6 +85,13 @@ class BondBreaking {
   std::vector<int> exceeding_;  // rows with an exceeded bond, from find() to apply()
   std::vector<int> changing_;   // rows_to_change()
   std::size_t broken_pairs_ = 0;
+  // The rows this rank tests and changes: all, or its own (distribute()) with the ghosts whose
+  // drift bounds its bonds' changes, the exchange of the criterion's flags of the bonds in the
+  // ghosts' rows that pair with its own, and those own bonds.
+  int row_begin_ = 0, row_end_ = 0;
+  const Halo* halo_ = nullptr;
+  std::unique_ptr<IndexExchange> reverse_exceeded_;
+  std::vector<int> shared_bonds_;
 };
 
 }  // namespace fissure

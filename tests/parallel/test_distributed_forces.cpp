@@ -101,9 +101,11 @@ TEST(DistributedForces, EqualOneRankBitwise) {
     if (ranks() > 1) {
       EXPECT_GT(boundary_rows, 0);
     }
+    // counted, not asserted: a rank that left early would leave the others in a collective call
+    int differing = 0;
     for (int i = halo.begin(); i < halo.end(); ++i)
-      ASSERT_EQ(std::memcmp(&force[3 * i], &expected[3 * i], 3 * sizeof(double)), 0)
-          << "particle " << i << ": " << force[3 * i] << " against " << expected[3 * i];
+      differing += std::memcmp(&force[3 * i], &expected[3 * i], 3 * sizeof(double)) != 0;
+    EXPECT_EQ(differing, 0);
     // forces() gives the same bits as forces_and_energy()
     std::vector<double> plain(y.size(), 0.0);
     part->forces(known.data(), plain.data());

@@ -60,16 +60,16 @@ TEST(Halo, FillCopiesTheOwnersValuesIntoTheGhostsOnly) {
       for (int k = 0; k < width; ++k) values[std::size_t(i) * width + k] = value(i, k);
     halo.fill(values.data(), width);
     const std::set<int> ghosts(halo.ghosts().begin(), halo.ghosts().end());
+    // counted, not asserted: a rank that left early would leave the others in the next fill
+    int wrong = 0;
     for (int i = 0; i < n; ++i) {
       const bool known = ghosts.count(i) || (i >= halo.begin() && i < halo.end());
       for (int k = 0; k < width; ++k) {
         const double v = values[std::size_t(i) * width + k];
-        if (known)
-          ASSERT_EQ(v, value(i, k)) << "particle " << i;
-        else
-          ASSERT_TRUE(std::isnan(v)) << "particle " << i;
+        wrong += known ? v != value(i, k) : !std::isnan(v);
       }
     }
+    EXPECT_EQ(wrong, 0);
   }
 }
 

@@ -1,0 +1,81 @@
+#include "parallel/index_exchange.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include "parallel/ownership.hpp"
+
+namespace fissure {
+
+namespace {
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != 0) throw std::runtime_error(fmt::format("PETSc: {} failed (error {})", what, code));
+}
+
+}  // namespace
+
+IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed)
+    : comm_(comm), boundaries_(std::move(boundaries)), needed_(std::move(needed)) {
+  PetscBool initialized = PETSC_FALSE;
+  check(PetscInitialized(&initialized), "PetscInitialized");
+  if (!initialized) throw std::logic_error("IndexExchange: PETSc is not initialised");
+  int size = 0;
+  if (MPI_Comm_rank(comm_, &rank_) != MPI_SUCCESS || MPI_Comm_size(comm_, &size) != MPI_SUCCESS)
+    throw std::runtime_error("IndexExchange: MPI_Comm_rank or MPI_Comm_size failed");
+  if (static_cast<int>(boundaries_.size()) != size + 1 || boundaries_.front() != 0 ||
+      !std::is_sorted(boundaries_.begin(), boundaries_.end()))
+    throw std::invalid_argument(
+        fmt::format("IndexExchange: {} boundaries for {} ranks; expected {} ascending from 0",
+                    boundaries_.size(), size, size + 1));
+  for (std::size_t k = 0; k < needed_.size(); ++k)
+    if (needed_[k] < 0 || needed_[k] >= boundaries_.back() ||
+        (needed_[k] >= begin() && needed_[k] < end()) || (k > 0 && needed_[k] <= needed_[k - 1]))
+      throw std::invalid_argument(fmt::format(
+          "IndexExchange: needed entry {} is outside [0, {}), this rank's own or out of order",
+          needed_[k], boundaries_.back()));
+  std::vector<PetscSFNode> remote(needed_.size());
+  for (std::size_t k = 0; k < needed_.size(); ++k) {
+    const int owner = owner_of(boundaries_, needed_[k]);
+    remote[k].rank = owner;
+    remote[k].index = needed_[k] - boundaries_[owner];
+  }
+  check(PetscSFCreate(comm_, &forest_), "PetscSFCreate");
+  check(PetscSFSetGraph(forest_, end() - begin(), static_cast<PetscInt>(remote.size()), nullptr,
+                        PETSC_COPY_VALUES, remote.data(), PETSC_COPY_VALUES),
+        "PetscSFSetGraph");
+  check(PetscSFSetUp(forest_), "PetscSFSetUp");
+}
+
+IndexExchange::~IndexExchange() {
+  PetscSFDestroy(&forest_);
+  for (auto& [bytes, type] : units_) MPI_Type_free(&type);
+}
+
+MPI_Datatype IndexExchange::unit(std::size_t entry_bytes) const {
+  if (const auto found = units_.find(entry_bytes); found != units_.end()) return found->second;
+  MPI_Datatype type = MPI_DATATYPE_NULL;
+  if (MPI_Type_contiguous(static_cast<int>(entry_bytes), MPI_BYTE, &type) != MPI_SUCCESS ||
+      MPI_Type_commit(&type) != MPI_SUCCESS)
+    throw std::runtime_error("IndexExchange: MPI_Type_contiguous or MPI_Type_commit failed");
+  units_[entry_bytes] = type;
+  return type;
+}
+
+void IndexExchange::fill_bytes(void* values, std::size_t entry_bytes) const {
+  if (entry_bytes == 0) throw std::invalid_argument("IndexExchange::fill: empty entries");
+  const MPI_Datatype type = unit(entry_bytes);
+  buffer_.resize(needed_.size() * entry_bytes);
+  auto* bytes = static_cast<unsigned char*>(values);
+  const unsigned char* roots = bytes + static_cast<std::size_t>(begin()) * entry_bytes;
+  check(PetscSFBcastBegin(forest_, type, roots, buffer_.data(), MPI_REPLACE), "PetscSFBcastBegin");
+  check(PetscSFBcastEnd(forest_, type, roots, buffer_.data(), MPI_REPLACE), "PetscSFBcastEnd");
+  for (std::size_t k = 0; k < needed_.size(); ++k)
+    std::memcpy(bytes + static_cast<std::size_t>(needed_[k]) * entry_bytes,
+                buffer_.data() + k * entry_bytes, entry_bytes);
+}
+
+}  // namespace fissure
