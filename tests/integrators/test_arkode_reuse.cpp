@@ -230,7 +230,9 @@ TEST(ArkodeFactorReuse, NearestGivesTheTrajectoryOfTheTangentFactor) {
     EXPECT_LT(difference, bound) << reuse;
     EXPECT_GT(test::statistic(*a, "krylov_iterations"), 0) << reuse;
     EXPECT_EQ(test::statistic(*a, "factorizations"), 1 + test::refreshes(*a)) << reuse;
-    if (!reuse) EXPECT_GT(test::statistic(*a, "refreshes_step_size"), 0);
+    if (!reuse) {
+      EXPECT_GT(test::statistic(*a, "refreshes_step_size"), 0);
+    }
   }
 }
 

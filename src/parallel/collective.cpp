@@ -1,0 +1,66 @@
+#include "parallel/collective.hpp"
+
+#include <fmt/format.h>
+
+#include <climits>
+#include <stdexcept>
+
+#include "core/error.hpp"
+
+namespace fissure {
+
+namespace {
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw std::runtime_error(fmt::format("MPI: {} failed", what));
+}
+
+std::string message_of(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "an unknown error";
+  }
+}
+
+}  // namespace
+
+void agree_on_error(MPI_Comm comm, std::exception_ptr error) {
+  int rank = 0;
+  check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+  const int mine = error ? rank : INT_MAX;
+  int first = INT_MAX;
+  check(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
+  if (first == INT_MAX) return;
+  std::string message = rank == first ? message_of(error) : std::string();
+  int length = static_cast<int>(message.size());
+  check(MPI_Bcast(&length, 1, MPI_INT, first, comm), "MPI_Bcast");
+  message.resize(length);
+  check(MPI_Bcast(message.data(), length, MPI_CHAR, first, comm), "MPI_Bcast");
+  if (error) std::rethrow_exception(error);
+  throw RunError(fmt::format("rank {}: {}", first, message));
+}
+
+std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
+                                 const double* values, int width) {
+  int rank = 0, size = 0;
+  check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+  check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+  if (static_cast<int>(boundaries.size()) != size + 1)
+    throw std::invalid_argument("gather_owned: one boundary per rank and one more expected");
+  std::vector<int> counts(size), displacements(size);
+  for (int r = 0; r < size; ++r) {
+    counts[r] = (boundaries[r + 1] - boundaries[r]) * width;
+    displacements[r] = boundaries[r] * width;
+  }
+  std::vector<double> gathered(rank == 0 ? static_cast<std::size_t>(boundaries.back()) * width : 0);
+  check(MPI_Gatherv(values + static_cast<std::size_t>(boundaries[rank]) * width, counts[rank],
+                    MPI_DOUBLE, gathered.data(), counts.data(), displacements.data(), MPI_DOUBLE, 0,
+                    comm),
+        "MPI_Gatherv");
+  return gathered;
+}
+
+}  // namespace fissure
