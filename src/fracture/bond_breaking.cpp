@@ -99,7 +99,16 @@ void BondBreaking::update_damage(int i) {
   damage_[i] = total > 0 ? 1.0 - static_cast<double>(intact_[i]) / total : 0.0;
 }
 
-std::size_t BondBreaking::run(const double* y) { return find(y) > 0 ? apply() : 0; }
+std::size_t BondBreaking::run(const double* y) {
+  const std::size_t pairs = find(y) > 0 ? apply() : 0;
+  if (!halo_) return pairs;
+  // whether any rank's rows changed decides collective work (an integrator's new forces): every
+  // rank must return the same; the directed bonds over all ranks count each pair twice
+  unsigned long directed = pairs > 0 ? removed_directed_ : 0, total = 0;
+  if (MPI_Allreduce(&directed, &total, 1, MPI_UNSIGNED_LONG, MPI_SUM, halo_->comm()) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Allreduce failed");
+  return total / 2;
+}
 
 // s^ω_ij = s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19), against a threshold that grows with
 // damage as the paper's text asks ("continuously increasing the crack threshold as the material
@@ -239,6 +248,7 @@ std::size_t BondBreaking::found(std::size_t exceeded) {
       if (exceeded_[families_.reverse[b]]) {
         const auto row = std::upper_bound(families_.offsets.begin(), families_.offsets.end(), b);
         changing_.push_back(static_cast<int>(row - families_.offsets.begin()) - 1);
+        ++exceeded;  // apply() must run here even where no own row exceeded its criterion
       }
   }
   std::sort(changing_.begin(), changing_.end());
@@ -250,9 +260,9 @@ std::size_t BondBreaking::apply() {
   const auto& off = families_.offsets;
   // A bond breaks in both rows when either row's criterion is exceeded; each row updates only
   // its own entries, so the rows can run in parallel. Only find()'s rows can change.
-  std::size_t removed = 0;
+  std::size_t removed = 0, directed = 0;
   const int rows = static_cast<int>(changing_.size());
-#pragma omp parallel for reduction(+ : removed) schedule(static)
+#pragma omp parallel for reduction(+ : removed, directed) schedule(static)
   for (int k = 0; k < rows; ++k) {
     const int i = changing_[k];
     bool changed = false;
@@ -260,6 +270,7 @@ std::size_t BondBreaking::apply() {
       if (!broken_[b] && (exceeded_[b] || exceeded_[families_.reverse[b]])) {
         remove(i, b);
         removed += owned(families_.neighbors[b]) ? 1 : 2;  // a pair shared: counted here whole
+        ++directed;
         changed = true;
       }
     if (changed) {
@@ -275,6 +286,7 @@ std::size_t BondBreaking::apply() {
   for (const int b : shared_bonds_) exceeded_[families_.reverse[b]] = 0;
   exceeding_.clear();
   broken_pairs_ += removed / 2;
+  removed_directed_ = directed;
   return removed / 2;
 }
 

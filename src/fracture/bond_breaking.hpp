@@ -22,16 +22,18 @@ class BondBreaking {
   // From now on find() and apply() test and change only the rows this rank owns (halo.begin()
   // to halo.end()), reading their positions and the ghosts' (issue 18; docs/mpi.md): a pair
   // whose rows live on two ranks breaks on both in the same call, as each rank learns through
-  // the halo's ranks whether the other row's criterion was exceeded. Counts (run(), apply(),
+  // the halo's ranks whether the other row's criterion was exceeded. Counts (apply(),
   // broken_bonds()) are then this rank's: its rows' broken bonds, a pair shared with another
   // rank counted on each. Damage is kept for the owned rows only. Collective; the halo must
   // outlive this.
   void distribute(const Halo& halo);
   // Breaks every intact bond whose criterion exceeds s_c in either of its rows; returns how many
-  // bonds (pairs) broke, so an integrator can be told that the bond set changed.
+  // bonds (pairs) broke, so an integrator can be told that the bond set changed. Over several
+  // ranks (distribute()), the pairs broken on all ranks, the same on every rank. Collective.
   std::size_t run(const double* y);
   // run() in two halves: find() marks the bonds whose criterion is exceeded and returns how many
-  // (directed); apply() breaks them and returns how many pairs broke.
+  // (directed; over several ranks also the own bonds whose partner in another rank's row was
+  // exceeded there); apply() breaks them and returns how many pairs broke.
   std::size_t find(const double* y);
   std::size_t apply();
   // After find(), until the next: the rows apply() changes (those of the exceeded bonds and of
@@ -85,6 +87,7 @@ class BondBreaking {
   std::vector<int> exceeding_;  // rows with an exceeded bond, from find() to apply()
   std::vector<int> changing_;   // rows_to_change()
   std::size_t broken_pairs_ = 0;
+  std::size_t removed_directed_ = 0;  // directed bonds the last apply() broke
   // The rows this rank tests and changes: all, or its own (distribute()) with the ghosts whose
   // drift bounds its bonds' changes, the exchange of the criterion's flags of the bonds in the
   // ghosts' rows that pair with its own, and those own bonds.

@@ -1,9 +1,11 @@
 #include "integrators/dynamics.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "integrators/collider_load.hpp"
 #include "integrators/load_registry.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -26,6 +28,22 @@ Dynamics::Dynamics(const Scene& scene, Model& model)
     entry_load_.push_back(!kind.make ? kConstraints : load ? int(loads_.size()) : kAbsent);
     if (load) loads_.push_back(std::move(load));
   }
+}
+
+void Dynamics::distribute(const Halo& halo) {
+  for (const auto& load : loads_)
+    if (const std::string key = load->not_distributable(); !key.empty())
+      throw std::invalid_argument(key + " cannot run over several ranks yet (docs/mpi.md)");
+  model_.distribute(halo);
+  halo_ = &halo;
+}
+
+int Dynamics::first_row() const { return halo_ ? halo_->begin() : 0; }
+
+int Dynamics::end_row() const { return halo_ ? halo_->end() : static_cast<int>(mass_.size()); }
+
+void Dynamics::share(double* y) const {
+  if (halo_) halo_->fill(y, 3);
 }
 
 void Dynamics::end_step(double h) {

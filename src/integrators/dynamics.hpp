@@ -15,6 +15,8 @@
 
 namespace fissure {
 
+class Halo;
+
 class Dynamics {
  public:
   // Its loads and constraints refer to the scene's masses, so the scene must outlive it.
@@ -61,6 +63,17 @@ class Dynamics {
   // For checkpoints: the loads' state and the force-evaluation counter, and back.
   NamedArrays saved_state() const;
   void restore_state(const NamedArrays& state);
+  // Over several ranks (issue 18; docs/mpi.md): the model evaluates only this rank's rows
+  // (Model::distribute), and an integrator that supports it (Integrator::distributable())
+  // advances rows [first_row(), end_row()) only and calls share() on its positions before each
+  // acceleration. Throws std::invalid_argument naming the key of a load or model that cannot
+  // be distributed. The halo must outlive this.
+  void distribute(const Halo& halo);
+  int first_row() const;
+  int end_row() const;
+  // Fills the ghosts' entries of y (3N) from the ranks that own them; nothing on one rank.
+  // Collective.
+  void share(double* y) const;
   // For integrators that hold particles through their own equations (petsc_newton): the
   // constraint reactions they computed, 3N (read on held particles only).
   void set_constraint_reactions(const std::vector<double>& reaction) {
@@ -82,6 +95,7 @@ class Dynamics {
   std::vector<int> entry_load_;
   std::vector<double> force_, scratch_;  // 3N
   long force_evaluations_ = 0;
+  const Halo* halo_ = nullptr;
 };
 
 }  // namespace fissure

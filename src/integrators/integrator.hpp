@@ -37,6 +37,11 @@ class Integrator {
   virtual bool explicit_step() const { return false; }
   // True when the integrator chooses its own steps; time.dt is then the largest.
   virtual bool adaptive() const { return false; }
+  // True when it can run over several ranks (Dynamics::distribute): it advances only the rows
+  // Dynamics::first_row() to end_row(), and from a state whose ghosts' positions are current
+  // (a whole initial or resumed state is) it leaves them current (Dynamics::share) before each
+  // acceleration and at the step's end, for the post-step and the next step.
+  virtual bool distributable() const { return false; }
   virtual Statistics statistics() const { return {}; }
   // For checkpoints: what the integrator carries from one step to the next (a cached
   // acceleration), and its restoration. Its counters (statistics()) are not kept.

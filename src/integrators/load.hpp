@@ -43,6 +43,10 @@ class Load {
   virtual double booked(const BookedStep& step) const = 0;
   // Ends a completed step of size h (a moving collider advances).
   virtual void end_step(double) {}
+  // Where the scene runs over several ranks (Dynamics::distribute): the config key that asks
+  // for this load if its force on a particle reads other particles' state (self-contact), which
+  // cannot be distributed yet; empty where each particle's force is its own.
+  virtual std::string not_distributable() const { return {}; }
   // For checkpoints: its state, named "dynamics.<name>", and back.
   virtual NamedArrays saved_state() const { return {}; }
   virtual void restore_state(const NamedArrays&) {}

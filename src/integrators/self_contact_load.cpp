@@ -21,6 +21,7 @@ class SelfContactLoad : public Load {
   double booked(const BookedStep& step) const override {
     return -work_of(force_, step.before, step.after);
   }
+  std::string not_distributable() const override { return "contact.self"; }
 
  private:
   SelfContact contact_;

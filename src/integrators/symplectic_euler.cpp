@@ -8,12 +8,15 @@ double SymplecticEuler::step(Dynamics& dynamics, State& state, double dt) {
   acceleration_.resize(y.size());
   dynamics.acceleration(state.time, y.data(), v.data(), acceleration_.data());
   const double t_end = state.time + dt;
-  const std::size_t n = y.size();
+  // this rank's rows: all on one rank
+  const std::size_t first = 3 * std::size_t(dynamics.first_row()),
+                    end = 3 * std::size_t(dynamics.end_row());
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k) v[k] += dt * acceleration_[k];
+  for (std::size_t k = first; k < end; ++k) v[k] += dt * acceleration_[k];
   dynamics.constrain_velocity(state.time, v.data());
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k) y[k] += dt * v[k];
+  for (std::size_t k = first; k < end; ++k) y[k] += dt * v[k];
+  dynamics.share(y.data());  // the post-step and the next step read the ghosts' new positions
   state.time = t_end;
   return dt;
 }

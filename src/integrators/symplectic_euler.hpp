@@ -8,6 +8,7 @@ class SymplecticEuler final : public Integrator {
  public:
   double step(Dynamics& dynamics, State& state, double dt) override;
   bool explicit_step() const override { return true; }
+  bool distributable() const override { return true; }
 
  private:
   std::vector<double> acceleration_;

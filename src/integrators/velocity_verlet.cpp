@@ -12,17 +12,21 @@ double VelocityVerlet::step(Dynamics& dynamics, State& state, double dt) {
     have_acceleration_ = true;
   }
   const double half = 0.5 * dt;
+  // this rank's rows: all on one rank
+  const std::size_t first = 3 * std::size_t(dynamics.first_row()),
+                    end = 3 * std::size_t(dynamics.end_row());
   // v_{n+½} = v_n + Δt/2 a_n; y_{n+1} = y_n + Δt v_{n+½}
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = first; k < end; ++k) {
     v[k] += half * acceleration_[k];
     y[k] += dt * v[k];
   }
   state.time += dt;
   // v_{n+1} = v_{n+½} + Δt/2 a_{n+1}
+  dynamics.share(y.data());
   dynamics.acceleration(state.time, y.data(), v.data(), acceleration_.data());
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k) v[k] += half * acceleration_[k];
+  for (std::size_t k = first; k < end; ++k) v[k] += half * acceleration_[k];
   dynamics.constrain_velocity(state.time, v.data());
   return dt;
 }

@@ -8,6 +8,7 @@ class VelocityVerlet final : public Integrator {
  public:
   double step(Dynamics& dynamics, State& state, double dt) override;
   bool explicit_step() const override { return true; }
+  bool distributable() const override { return true; }
   void bonds_changed() override { have_acceleration_ = false; }
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;
