@@ -1,6 +1,6 @@
 // Weak scaling of the distributed explicit step (issue 18): an elastic bar whose
 // length grows with the number of ranks, so that each rank owns about the same number of
-// particles; each step is a velocity Verlet step over the rank's own rows (the ghosts'
+// particles; each step is velocity Verlet's step over the rank's own rows (the ghosts'
 // positions and dilatation terms through the halo) and the fracture post-step's search. Run
 // under mpirun (bench/run_distributed_bench.sh). Prints "key value" lines from rank 0: the
 // largest over ranks of the time per step, the halo's bytes per step, the ghost fraction and
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "fracture/bond_breaking.hpp"
+#include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "parallel/halo.hpp"
 #include "parallel/ownership.hpp"
@@ -57,36 +58,29 @@ int run(int argc, char** argv) {
   const auto setup_start = std::chrono::steady_clock::now();
   const fissure::Scene scene = fissure::build_scene(fissure::parse_config(yaml, "bench.yaml"));
   auto model = fissure::make_model(scene);
+  fissure::Dynamics dynamics(scene, *model);
   fissure::BondBreaking fracture(scene, *model);
   const fissure::Halo halo(PETSC_COMM_WORLD, scene.families,
                            fissure::split_rows_by_bonds(scene.families.offsets, ranks));
-  model->distribute(halo);
+  dynamics.distribute(halo);
   fracture.distribute(halo);
   const double setup = seconds_since(setup_start);
 
   const int n = scene.particles.count(), begin = halo.begin(), end = halo.end();
-  std::vector<double> y = scene.particles.reference, v(y.size(), 0.0), a(y.size(), 0.0),
-                      f(y.size(), 0.0);
-  for (int k = 3 * begin; k < 3 * end; ++k) y[k] *= 1.0 + 1e-4 * std::sin(0.37 * k);
+  fissure::State state{scene.particles.reference, scene.particles.velocity, 0.0};
+  for (std::size_t k = 0; k < state.position.size(); ++k)
+    state.position[k] *= 1.0 + 1e-4 * std::sin(0.37 * k);
   const double dt = 0.5 * model->stable_time_step();
-  const auto& mass = scene.particles.mass;
-  const auto accelerate = [&] {
-    halo.fill(y.data(), 3);
-    model->forces(y.data(), f.data());
-    for (int k = 3 * begin; k < 3 * end; ++k) a[k] = f[k] / mass[k / 3];
-  };
-  accelerate();
+  auto integrator = fissure::make_integrator("velocity_verlet", "bench");
+  integrator->step(dynamics, state, dt);  // the first step also computes the first acceleration
   MPI_Barrier(PETSC_COMM_WORLD);
   const auto start = std::chrono::steady_clock::now();
   std::size_t broken = 0;
   for (int s = 0; s < steps; ++s) {
-    for (int k = 3 * begin; k < 3 * end; ++k) {  // v_{n+½}, y_{n+1}
-      v[k] += 0.5 * dt * a[k];
-      y[k] += dt * v[k];
-    }
-    accelerate();
-    for (int k = 3 * begin; k < 3 * end; ++k) v[k] += 0.5 * dt * a[k];  // v_{n+1}
-    broken += fracture.run(y.data());
+    integrator->step(dynamics, state, dt);
+    const std::size_t pairs = fracture.run(state.position.data());
+    if (pairs > 0) integrator->bonds_changed();
+    broken += pairs;
   }
   const double per_step = seconds_since(start) / steps;
 
