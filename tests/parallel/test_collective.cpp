@@ -9,21 +9,10 @@
 
 #include "core/error.hpp"
 #include "parallel/collective.hpp"
+#include "ranks.hpp"
 
 namespace fissure {
 namespace {
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
-  return r;
-}
-
-int ranks() {
-  int size = 0;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
-}
 
 // What agree() threw on this rank: its message, and whether it kept the InputError type.
 struct Outcome {
@@ -44,11 +33,11 @@ Outcome outcome(Work&& work) {
 }
 
 TEST(Collective, AnErrorOnOneRankStopsEveryRankWithItsMessage) {
-  const int last = ranks() - 1;
+  const int last = test::ranks() - 1;
   const Outcome o = outcome([&] {
-    if (rank() == last) throw InputError("scene.yaml", "bodies[0].resolution", "must be > 0");
+    if (test::rank() == last) throw InputError("scene.yaml", "bodies[0].resolution", "must be > 0");
   });
-  if (rank() == last) {
+  if (test::rank() == last) {
     EXPECT_TRUE(o.input_error);  // the rank that raised it keeps its own exception
     EXPECT_EQ(o.message, "scene.yaml: bodies[0].resolution: must be > 0");
   } else {
@@ -61,10 +50,12 @@ TEST(Collective, AnErrorOnOneRankStopsEveryRankWithItsMessage) {
 // own.
 TEST(Collective, TheLowestFailingRankSpeaksForAll) {
   const Outcome o = outcome([&] {
-    if (rank() > 0 || ranks() == 1) throw RunError(fmt::format("rank {} failed", rank()));
+    if (test::rank() > 0 || test::ranks() == 1)
+      throw RunError(fmt::format("rank {} failed", test::rank()));
   });
-  EXPECT_EQ(o.message, rank() == 0 && ranks() > 1 ? std::string("rank 1: rank 1 failed")
-                                                  : fmt::format("rank {} failed", rank()));
+  EXPECT_EQ(o.message, test::rank() == 0 && test::ranks() > 1
+                           ? std::string("rank 1: rank 1 failed")
+                           : fmt::format("rank {} failed", test::rank()));
 }
 
 TEST(Collective, NothingThrownWhenNoRankFails) {
@@ -73,14 +64,14 @@ TEST(Collective, NothingThrownWhenNoRankFails) {
 
 TEST(Collective, GatherOwnedPutsEveryRankPieceInPlaceOnRankZero) {
   std::vector<int> boundaries{0};
-  for (int r = 0; r < ranks(); ++r) boundaries.push_back(boundaries.back() + 5 + 3 * r);
+  for (int r = 0; r < test::ranks(); ++r) boundaries.push_back(boundaries.back() + 5 + 3 * r);
   const int n = boundaries.back(), width = 3;
   std::vector<double> values(std::size_t(n) * width, -1.0);  // only the owned piece is set
-  for (int i = boundaries[rank()]; i < boundaries[rank() + 1]; ++i)
+  for (int i = boundaries[test::rank()]; i < boundaries[test::rank() + 1]; ++i)
     for (int k = 0; k < width; ++k) values[std::size_t(i) * width + k] = 10.0 * i + k;
   const std::vector<double> gathered =
       gather_owned(PETSC_COMM_WORLD, boundaries, values.data(), width);
-  if (rank() != 0) {
+  if (test::rank() != 0) {
     EXPECT_TRUE(gathered.empty());
     return;
   }

@@ -7,33 +7,16 @@
 
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "model/model.hpp"
-#include "parallel/halo.hpp"
-#include "parallel/ownership.hpp"
+#include "ranks.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
 namespace {
-
-int ranks() {
-  int size = 0;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
-}
-
-Scene slab(const std::string& material, const std::string& model = "lps") {
-  return test::block_scene({.size = {0.3, 0.1, 0.05},
-                            .resolution = 0.02,
-                            .bulk = 2.0e6,
-                            .shear = 1.0e6,
-                            .model = model,
-                            .material = material});
-}
 
 // A general deformation plus a different small displacement on every particle.
 std::vector<double> perturbed(const Particles& p) {
@@ -66,7 +49,7 @@ TEST(DistributedForces, EqualOneRankBitwise) {
         Case{"full surface correction, pre-cracked", ", surface_correction: full", true},
         Case{"no surface correction", ", surface_correction: none", false}}) {
     SCOPED_TRACE(c.name);
-    const Scene scene = slab(c.material);
+    const Scene scene = test::slab(c.material);
     const int n = scene.particles.count();
     const std::vector<double> y = perturbed(scene.particles);
     auto whole = make_model(scene);
@@ -78,14 +61,10 @@ TEST(DistributedForces, EqualOneRankBitwise) {
     std::vector<double> expected(3 * std::size_t(n));
     const double energy = whole->forces_and_energy(y.data(), expected.data());
 
-    const Halo halo(PETSC_COMM_WORLD, scene.families,
-                    split_rows_by_bonds(scene.families.offsets, ranks()));
+    const Halo halo = test::split_halo(scene);
     part->distribute(halo);
     // this rank knows its own rows' positions only; the halo brings the ghosts'
-    std::vector<double> known(y.size(), std::numeric_limits<double>::quiet_NaN());
-    std::copy(y.begin() + 3 * halo.begin(), y.begin() + 3 * halo.end(),
-              known.begin() + 3 * halo.begin());
-    halo.fill(known.data(), 3);
+    const std::vector<double> known = test::known_positions(y, halo);
     std::vector<double> force(y.size(), 0.0);
     const double share = part->forces_and_energy(known.data(), force.data());
     // on several ranks, rows that read ghosts' positions and terms (a missing exchange of either
@@ -98,7 +77,7 @@ TEST(DistributedForces, EqualOneRankBitwise) {
             scene.families.neighbors[b] < halo.begin() || scene.families.neighbors[b] >= halo.end();
       boundary_rows += reads_ghost;
     }
-    if (ranks() > 1) {
+    if (test::ranks() > 1) {
       EXPECT_GT(boundary_rows, 0);
     }
     // counted, not asserted: a rank that left early would leave the others in a collective call
@@ -130,13 +109,13 @@ std::string refusal(Call&& call) {
 }
 
 TEST(DistributedForces, ModelsThatCannotBeDistributedSaySo) {
-  const Halo halo(PETSC_COMM_WORLD, slab("").families,
-                  split_rows_by_bonds(slab("").families.offsets, ranks()));
-  const Scene plastic = slab(", plasticity: {yield_stress: 1.0e4}");
+  const Scene elastic = test::slab();
+  const Halo halo = test::split_halo(elastic);
+  const Scene plastic = test::slab(", plasticity: {yield_stress: 1.0e4}");
   auto model = make_model(plastic);
   EXPECT_EQ(refusal([&] { model->distribute(halo); }),
             "material.plasticity cannot be evaluated over several ranks yet (docs/mpi.md)");
-  const Scene paper = slab("", "paper");
+  const Scene paper = test::slab("", "", "paper");
   auto paper_model = make_model(paper);
   EXPECT_EQ(refusal([&] { paper_model->distribute(halo); }),
             "material.model paper cannot be evaluated over several ranks yet (docs/mpi.md)");

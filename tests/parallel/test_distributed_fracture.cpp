@@ -9,40 +9,20 @@
 
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <vector>
 
 #include "fracture/bond_breaking.hpp"
 #include "model/model.hpp"
-#include "parallel/halo.hpp"
-#include "parallel/ownership.hpp"
-#include "support/scenes.hpp"
+#include "ranks.hpp"
 
 namespace fissure {
 namespace {
 
-int ranks() {
-  int size = 0;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
-}
-
-long sum_over_ranks(long value) {
-  long total = 0;
-  MPI_Allreduce(&value, &total, 1, MPI_LONG, MPI_SUM, PETSC_COMM_WORLD);
-  return total;
-}
-
 Scene cracked_slab() {
-  return test::block_scene(
-      {.size = {0.3, 0.1, 0.05},
-       .resolution = 0.02,
-       .bulk = 2.0e6,
-       .shear = 1.0e6,
-       .material = ", fracture: {critical_stretch: 0.02, alpha: 2.0}",
-       .scene = "initial_cracks:\n"
-                "  - {plane: {point: [0.15, 0, 0], normal: [1, 0, 0], region: {box: {min: [-1, "
-                "-1, -1], max: [1, 0.05, 1]}}}}\n"});
+  return test::slab(", fracture: {critical_stretch: 0.02, alpha: 2.0}",
+                    "initial_cracks:\n"
+                    "  - {plane: {point: [0.15, 0, 0], normal: [1, 0, 0], region: {box: {min: "
+                    "[-1, -1, -1], max: [1, 0.05, 1]}}}}\n");
 }
 
 // Step k: stretched along x by 0.6% per step about the crack, opened at the crack's mouth,
@@ -65,7 +45,7 @@ TEST(DistributedFracture, EveryStepBreaksTheBondsOfOneRank) {
   auto part_model = make_model(scene);
   BondBreaking whole(scene, *whole_model);
   BondBreaking part(scene, *part_model);
-  const Halo halo(PETSC_COMM_WORLD, families, split_rows_by_bonds(families.offsets, ranks()));
+  const Halo halo = test::split_halo(scene);
   part_model->distribute(halo);
   part.distribute(halo);
   const auto owned = [&](int j) { return j >= halo.begin() && j < halo.end(); };
@@ -76,10 +56,7 @@ TEST(DistributedFracture, EveryStepBreaksTheBondsOfOneRank) {
     SCOPED_TRACE(k);
     const std::vector<double> y = stretched(scene.particles, k);
     whole.run(y.data());
-    std::vector<double> known(y.size(), std::numeric_limits<double>::quiet_NaN());
-    std::copy(y.begin() + 3 * halo.begin(), y.begin() + 3 * halo.end(),
-              known.begin() + 3 * halo.begin());
-    halo.fill(known.data(), 3);
+    const std::vector<double> known = test::known_positions(y, halo);
     part.run(known.data());
     std::vector<double> expected(y.size()), force(y.size());
     whole_model->forces(y.data(), expected.data());
@@ -106,12 +83,12 @@ TEST(DistributedFracture, EveryStepBreaksTheBondsOfOneRank) {
       directed += part.broken()[b];
   long whole_directed = 0;
   for (const auto flag : whole.broken()) whole_directed += flag;
-  EXPECT_EQ(sum_over_ranks(directed), whole_directed);
+  EXPECT_EQ(test::sum_over_ranks(directed), whole_directed);
   EXPECT_GT(static_cast<long>(whole.broken_bonds()), 0);
   const long initial = static_cast<long>(BondBreaking(scene, *make_model(scene)).broken_bonds());
   EXPECT_GT(static_cast<long>(whole.broken_bonds()), initial);  // the stretch broke bonds
-  if (ranks() > 1) {
-    EXPECT_GT(sum_over_ranks(shared_broken), 0);  // pairs across the cuts broke
+  if (test::ranks() > 1) {
+    EXPECT_GT(test::sum_over_ranks(shared_broken), 0);  // pairs across the cuts broke
   }
 }
 

@@ -13,41 +13,22 @@
 
 #include "fracture/bond_breaking.hpp"
 #include "integrators/integrator.hpp"
-#include "parallel/halo.hpp"
-#include "parallel/ownership.hpp"
-#include "support/scenes.hpp"
+#include "ranks.hpp"
 
 namespace fissure {
 namespace {
 
-int ranks() {
-  int size = 0;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
-}
-
-long sum_over_ranks(long value) {
-  long total = 0;
-  MPI_Allreduce(&value, &total, 1, MPI_LONG, MPI_SUM, PETSC_COMM_WORLD);
-  return total;
-}
-
 Scene pulled_slab() {
-  return test::block_scene(
-      {.size = {0.3, 0.1, 0.05},
-       .resolution = 0.02,
-       .bulk = 2.0e6,
-       .shear = 1.0e6,
-       .material = ", fracture: {critical_stretch: 0.01, alpha: 1.0}",
-       .scene = "gravity: [0, -9.81, 0]\n"
-                "initial_cracks:\n"
-                "  - {plane: {point: [0.15, 0, 0], normal: [1, 0, 0], region: {box: {min: [-1, "
-                "-1, -1], max: [1, 0.04, 1]}}}}\n"
-                "constraints:\n"
-                "  - {region: {box: {min: [-1, -1, -1], max: [0.03, 1, 1]}}, velocity: [-2, 0, "
-                "0]}\n"
-                "  - {region: {box: {min: [0.27, -1, -1], max: [1, 1, 1]}}, velocity: [2, 0, "
-                "0]}\n"});
+  return test::slab(", fracture: {critical_stretch: 0.01, alpha: 1.0}",
+                    "gravity: [0, -9.81, 0]\n"
+                    "initial_cracks:\n"
+                    "  - {plane: {point: [0.15, 0, 0], normal: [1, 0, 0], region: {box: {min: "
+                    "[-1, -1, -1], max: [1, 0.04, 1]}}}}\n"
+                    "constraints:\n"
+                    "  - {region: {box: {min: [-1, -1, -1], max: [0.03, 1, 1]}}, velocity: [-2, "
+                    "0, 0]}\n"
+                    "  - {region: {box: {min: [0.27, -1, -1], max: [1, 1, 1]}}, velocity: [2, 0, "
+                    "0]}\n");
 }
 
 struct Stepper {
@@ -76,7 +57,7 @@ TEST(DistributedRun, ExplicitFractureRunsEqualOneRankAtEveryStep) {
     const Families& families = scene.families;
     Stepper whole(scene, type), part(scene, type);
     ASSERT_TRUE(part.integrator->distributable());
-    const Halo halo(PETSC_COMM_WORLD, families, split_rows_by_bonds(families.offsets, ranks()));
+    const Halo halo = test::split_halo(scene);
     part.dynamics->distribute(halo);
     part.fracture->distribute(halo);
     const double dt = 0.5 * whole.model->stable_time_step();
@@ -104,23 +85,18 @@ TEST(DistributedRun, ExplicitFractureRunsEqualOneRankAtEveryStep) {
                                                         families.neighbors[b] >= halo.end());
     const long broken = static_cast<long>(whole.fracture->broken_bonds());
     EXPECT_GT(broken, initial + 10);  // the pull broke bonds beyond the pre-crack
-    if (ranks() > 1) {
-      EXPECT_GT(sum_over_ranks(shared_broken), 0);  // and pairs across the cuts
+    if (test::ranks() > 1) {
+      EXPECT_GT(test::sum_over_ranks(shared_broken), 0);  // and pairs across the cuts
     }
     RecordProperty("broken_bonds", static_cast<int>(broken));
   }
 }
 
 TEST(DistributedRun, LoadsThatReadOtherParticlesSaySo) {
-  const Scene scene = test::block_scene({.size = {0.3, 0.1, 0.05},
-                                         .resolution = 0.02,
-                                         .bulk = 2.0e6,
-                                         .shear = 1.0e6,
-                                         .scene = "contact: {self: true}\n"});
+  const Scene scene = test::slab("", "contact: {self: true}\n");
   auto model = make_model(scene);
   Dynamics dynamics(scene, *model);
-  const Halo halo(PETSC_COMM_WORLD, scene.families,
-                  split_rows_by_bonds(scene.families.offsets, ranks()));
+  const Halo halo = test::split_halo(scene);
   std::string message;
   try {
     dynamics.distribute(halo);

@@ -11,33 +11,22 @@
 
 #include "parallel/halo.hpp"
 #include "parallel/ownership.hpp"
-#include "support/scenes.hpp"
+#include "ranks.hpp"
 
 namespace fissure {
 namespace {
 
-int ranks() {
-  int size = 0;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
-}
-
-Scene slab() {
-  return test::block_scene(
-      {.size = {0.3, 0.1, 0.05}, .resolution = 0.02, .bulk = 1.0e6, .shear = 1.0e6});
-}
-
 TEST(Halo, GhostsAreTheFamilyMembersOwnedElsewhere) {
-  const Scene scene = slab();
+  const Scene scene = test::slab();
   const Families& families = scene.families;
-  const Halo halo(PETSC_COMM_WORLD, families, split_rows_by_bonds(families.offsets, ranks()));
+  const Halo halo(PETSC_COMM_WORLD, families, split_rows_by_bonds(families.offsets, test::ranks()));
   std::set<int> expected;
   for (int i = halo.begin(); i < halo.end(); ++i)
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
       if (families.neighbors[b] < halo.begin() || families.neighbors[b] >= halo.end())
         expected.insert(families.neighbors[b]);
   EXPECT_EQ(halo.ghosts(), std::vector<int>(expected.begin(), expected.end()));
-  if (ranks() > 1) {
+  if (test::ranks() > 1) {
     EXPECT_FALSE(halo.ghosts().empty());  // a slab cut across has ghosts
   }
 }
@@ -45,9 +34,9 @@ TEST(Halo, GhostsAreTheFamilyMembersOwnedElsewhere) {
 // Each rank writes a value only its own rows can know (rank and id); after the fill every
 // ghost holds its owner's value, every other entry it does not own keeps NaN.
 TEST(Halo, FillCopiesTheOwnersValuesIntoTheGhostsOnly) {
-  const Scene scene = slab();
+  const Scene scene = test::slab();
   const int n = scene.particles.count();
-  const std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, ranks());
+  const std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, test::ranks());
   const Halo halo(PETSC_COMM_WORLD, scene.families, boundaries);
   for (const int width : {1, 3, 4}) {
     SCOPED_TRACE(width);
@@ -74,8 +63,8 @@ TEST(Halo, FillCopiesTheOwnersValuesIntoTheGhostsOnly) {
 }
 
 TEST(Halo, RefusesBoundariesOfAnotherScene) {
-  const Scene scene = slab();
-  std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, ranks());
+  const Scene scene = test::slab();
+  std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, test::ranks());
   boundaries.back() += 1;
   EXPECT_THROW(Halo(PETSC_COMM_WORLD, scene.families, boundaries), std::invalid_argument);
 }
