@@ -3,9 +3,12 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "app/checkpoint.hpp"
 #include "app/info.hpp"
@@ -17,6 +20,30 @@
 #include "scene/render_settings.hpp"
 #include "scene/study_config.hpp"
 #include "study/study.hpp"
+
+namespace {
+
+// The number of ranks mpirun started this process among (Open MPI's OMPI_COMM_WORLD_SIZE,
+// MPICH's PMI_SIZE), 1 when it was not started by mpirun; read without initialising MPI.
+int launched_ranks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
+  return 1;
+}
+
+// fissure run and study write one output folder: on several ranks each would run the whole
+// scene into it, since the run loop does not distribute yet (docs/mpi.md).
+void refuse_several_ranks(const std::string& verb) {
+  if (const int ranks = launched_ranks(); ranks > 1)
+    throw fissure::InputError(
+        "", "",
+        fmt::format("fissure {} was started on {} MPI ranks, but its run loop does not "
+                    "distribute yet: each rank would run the whole scene into the same output "
+                    "folder. Run it on one rank (docs/mpi.md says what is distributed so far)",
+                    verb, ranks));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -78,6 +105,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*study) {
+      refuse_several_ranks("study");
       fissure::StudyConfig study_config = fissure::load_study(config_path, overrides);
       if (!out_dir.empty()) study_config.output_dir = out_dir;
       const auto s = fissure::run_study(study_config, isatty(fileno(stderr)));
@@ -85,6 +113,7 @@ int main(int argc, char** argv) {
                  s.failed, s.plotted ? ", work_precision.png/.svg" : "", s.folder);
       return 0;
     }
+    if (*run) refuse_several_ranks("run");
     std::unique_ptr<fissure::CheckpointReader> checkpoint;
     if (*run && resume_dir.empty() == config_path.empty())
       throw fissure::InputError("", "", "fissure run takes a scene file or --resume OUT_DIR");

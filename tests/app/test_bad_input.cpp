@@ -101,6 +101,29 @@ TEST(BadInput, MissingConfigFile) {
       << outcome.output;
 }
 
+// fissure run under mpirun on 2 ranks: the run loop does not distribute yet, so rather than two
+// whole runs writing one folder, each rank refuses before anything is written (docs/mpi.md).
+TEST(BadInput, RunOnSeveralRanksIsRefusedBeforeAnythingIsWritten) {
+  const auto dir = test::scratch_dir("ranks");
+  test::write_file(dir / "scene.yaml", scene(kBox));
+  const auto out = dir / "out";
+  const auto outcome = test::run_shell(
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun -np 2 "
+      "--oversubscribe " +
+      std::string(FISSURE_BINARY) + " run " + (dir / "scene.yaml").string() + " --out " +
+      out.string());
+  EXPECT_NE(outcome.exit_code, 0);
+  EXPECT_NE(outcome.output.find("fissure run was started on 2 MPI ranks, but its run loop does "
+                                "not distribute yet"),
+            std::string::npos)
+      << outcome.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // one rank, as before
+  EXPECT_EQ(test::run_fissure("run " + (dir / "scene.yaml").string() + " --out " + out.string())
+                .exit_code,
+            0);
+}
+
 // An integrator option the scene cannot use fails before the output folder is touched: exit 2,
 // the key path, and an earlier run's output still in place (clear_previous_output would have
 // removed it; before Integrator::check it failed in the first step, after the first frame).
