@@ -244,10 +244,9 @@ std::size_t BondBreaking::found(std::size_t exceeded) {
   // the rows sharing a pair with a ghost's row whose criterion was exceeded there
   if (reverse_exceeded_) {
     reverse_exceeded_->fill(exceeded_.data(), 1);
-    for (const int b : shared_bonds_)
-      if (exceeded_[families_.reverse[b]]) {
-        const auto row = std::upper_bound(families_.offsets.begin(), families_.offsets.end(), b);
-        changing_.push_back(static_cast<int>(row - families_.offsets.begin()) - 1);
+    for (std::size_t k = 0; k < shared_bonds_.size(); ++k)
+      if (exceeded_[families_.reverse[shared_bonds_[k]]]) {
+        changing_.push_back(shared_rows_[k]);
         ++exceeded;  // apply() must run here even where no own row exceeded its criterion
       }
   }
@@ -314,11 +313,13 @@ void BondBreaking::distribute(const Halo& halo) {
   // Bond b of an owned row pairs with bond reverse[b] of row j: owned by j's rank, whose bonds
   // are the CSR range of its rows.
   shared_bonds_.clear();
+  shared_rows_.clear();
   std::vector<int> reverses;
   for (int i = row_begin_; i < row_end_; ++i)
     for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
       if (!owned(families_.neighbors[b])) {
         shared_bonds_.push_back(b);
+        shared_rows_.push_back(i);
         reverses.push_back(families_.reverse[b]);
       }
   std::sort(reverses.begin(), reverses.end());

@@ -94,7 +94,7 @@ class BondBreaking {
   int row_begin_ = 0, row_end_ = 0;
   const Halo* halo_ = nullptr;
   std::unique_ptr<IndexExchange> reverse_exceeded_;
-  std::vector<int> shared_bonds_;
+  std::vector<int> shared_bonds_, shared_rows_;  // an own bond to a ghost, and its row
 };
 
 }  // namespace fissure

@@ -105,7 +105,8 @@ class Model {
   // (halo.begin() to halo.end()): they read the positions of those rows and of the halo's
   // ghosts, write those rows of f, and forces_and_energy() returns this rank's share of Π;
   // whatever a row needs from a ghost's row comes through the halo (issue 18; docs/mpi.md).
-  // The halo must outlive the model. Other evaluations still evaluate every row. A model that
+  // The halo must outlive the model. Other evaluations still evaluate every row, from whatever
+  // positions they are given, and break_bond() changes only the row it names. A model that
   // cannot be distributed throws std::invalid_argument saying why.
   virtual void distribute(const Halo& halo);
 
