@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.hpp"
+#include "parallel/index_exchange.hpp"
 
 namespace fissure {
 
@@ -45,11 +46,9 @@ void agree_on_error(MPI_Comm comm, std::exception_ptr error) {
 
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                  const double* values, int width) {
-  int rank = 0, size = 0;
-  check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
-  check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
-  if (static_cast<int>(boundaries.size()) != size + 1)
-    throw std::invalid_argument("gather_owned: one boundary per rank and one more expected");
+  if (boundaries.empty()) throw std::invalid_argument("gather_owned: no boundaries");
+  const int rank = rank_in_split(comm, boundaries, boundaries.back(), "gather_owned");
+  const int size = static_cast<int>(boundaries.size()) - 1;
   std::vector<int> counts(size), displacements(size);
   for (int r = 0; r < size; ++r) {
     counts[r] = (boundaries[r + 1] - boundaries[r]) * width;

@@ -20,8 +20,6 @@ class Halo {
 
   int begin() const { return exchange_.begin(); }
   int end() const { return exchange_.end(); }
-  int rank() const { return exchange_.rank(); }
-  int ranks() const { return static_cast<int>(exchange_.boundaries().size()) - 1; }
   MPI_Comm comm() const { return exchange_.comm(); }
   // Which rank owns which particles (split_rows_by_bonds).
   const std::vector<int>& boundaries() const { return exchange_.boundaries(); }

@@ -18,19 +18,25 @@ void check(PetscErrorCode code, const char* what) {
 
 }  // namespace
 
+int rank_in_split(MPI_Comm comm, const std::vector<int>& boundaries, int total, const char* who) {
+  int rank = 0, size = 0;
+  if (MPI_Comm_rank(comm, &rank) != MPI_SUCCESS || MPI_Comm_size(comm, &size) != MPI_SUCCESS)
+    throw std::runtime_error(fmt::format("{}: MPI_Comm_rank or MPI_Comm_size failed", who));
+  if (static_cast<int>(boundaries.size()) != size + 1 || boundaries.front() != 0 ||
+      boundaries.back() != total || !std::is_sorted(boundaries.begin(), boundaries.end()))
+    throw std::invalid_argument(fmt::format(
+        "{}: {} boundaries for {} ranks and {} entries; expected {} ascending from 0 to {}", who,
+        boundaries.size(), size, total, size + 1, total));
+  return rank;
+}
+
 IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed)
     : comm_(comm), boundaries_(std::move(boundaries)), needed_(std::move(needed)) {
   PetscBool initialized = PETSC_FALSE;
   check(PetscInitialized(&initialized), "PetscInitialized");
   if (!initialized) throw std::logic_error("IndexExchange: PETSc is not initialised");
-  int size = 0;
-  if (MPI_Comm_rank(comm_, &rank_) != MPI_SUCCESS || MPI_Comm_size(comm_, &size) != MPI_SUCCESS)
-    throw std::runtime_error("IndexExchange: MPI_Comm_rank or MPI_Comm_size failed");
-  if (static_cast<int>(boundaries_.size()) != size + 1 || boundaries_.front() != 0 ||
-      !std::is_sorted(boundaries_.begin(), boundaries_.end()))
-    throw std::invalid_argument(
-        fmt::format("IndexExchange: {} boundaries for {} ranks; expected {} ascending from 0",
-                    boundaries_.size(), size, size + 1));
+  if (boundaries_.empty()) throw std::invalid_argument("IndexExchange: no boundaries");
+  rank_ = rank_in_split(comm_, boundaries_, boundaries_.back(), "IndexExchange");
   for (std::size_t k = 0; k < needed_.size(); ++k)
     if (needed_[k] < 0 || needed_[k] >= boundaries_.back() ||
         (needed_[k] >= begin() && needed_[k] < end()) || (k > 0 && needed_[k] <= needed_[k - 1]))
@@ -50,6 +56,8 @@ IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::ve
   check(PetscSFSetUp(forest_), "PetscSFSetUp");
 }
 
+// A destructor cannot report a failure: both calls only release what the constructor and fill
+// made.
 IndexExchange::~IndexExchange() {
   PetscSFDestroy(&forest_);
   for (auto& [bytes, type] : units_) MPI_Type_free(&type);

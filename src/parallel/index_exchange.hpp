@@ -14,16 +14,19 @@
 
 namespace fissure {
 
+// This rank in comm, after checking that `boundaries` splits [0, total) over comm's ranks (one
+// more entry than ranks, ascending from 0 to total); throws std::invalid_argument naming `who`.
+int rank_in_split(MPI_Comm comm, const std::vector<int>& boundaries, int total, const char* who);
+
 class IndexExchange {
  public:
-  // `needed`: sorted, unique, none in this rank's own range. PETSc must be initialised.
-  // Collective over comm.
+  // `boundaries`: as rank_in_split over [0, boundaries.back()); `needed`: sorted, unique, none in
+  // this rank's own range. PETSc must be initialised. Collective over comm.
   IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed);
   ~IndexExchange();
   IndexExchange(const IndexExchange&) = delete;
   IndexExchange& operator=(const IndexExchange&) = delete;
 
-  int rank() const { return rank_; }
   int begin() const { return boundaries_[rank_]; }
   int end() const { return boundaries_[rank_ + 1]; }
   MPI_Comm comm() const { return comm_; }

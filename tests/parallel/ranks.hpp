@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,18 @@ inline std::vector<double> known_positions(const std::vector<double>& y, const H
             known.begin() + 3 * halo.begin());
   halo.fill(known.data(), 3);
   return known;
+}
+
+// The message of the std::invalid_argument `call` throws, or "" if it returns: what a part that
+// cannot run over several ranks says.
+template <class Call>
+std::string refusal(Call&& call) {
+  try {
+    call();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace fissure::test

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -97,27 +96,16 @@ TEST(DistributedForces, EqualOneRankBitwise) {
   }
 }
 
-// The message of the std::invalid_argument `call` throws, or "" if it returns.
-template <class Call>
-std::string refusal(Call&& call) {
-  try {
-    call();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(DistributedForces, ModelsThatCannotBeDistributedSaySo) {
   const Scene elastic = test::slab();
   const Halo halo = test::split_halo(elastic);
   const Scene plastic = test::slab(", plasticity: {yield_stress: 1.0e4}");
   auto model = make_model(plastic);
-  EXPECT_EQ(refusal([&] { model->distribute(halo); }),
+  EXPECT_EQ(test::refusal([&] { model->distribute(halo); }),
             "material.plasticity cannot be evaluated over several ranks yet (docs/mpi.md)");
   const Scene paper = test::slab("", "", "paper");
   auto paper_model = make_model(paper);
-  EXPECT_EQ(refusal([&] { paper_model->distribute(halo); }),
+  EXPECT_EQ(test::refusal([&] { paper_model->distribute(halo); }),
             "material.model paper cannot be evaluated over several ranks yet (docs/mpi.md)");
 }
 
