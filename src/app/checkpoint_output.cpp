@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "io/checkpoint_file.hpp"
 
 namespace fissure {
@@ -24,19 +26,51 @@ void CheckpointOutput::after_step(const RunParts& run, const Step&) {
   }
 }
 
+namespace {
+
+// Over several ranks each rank knows its own rows: the per-particle arrays of the model and the
+// integrator (every array of theirs, N values per particle) are gathered on the root, the rest is
+// the same on every rank.
+NamedArrays gathered(const RunRanks& ranks, NamedArrays part, int particles) {
+  if (!ranks.distributed()) return part;
+  for (auto& [name, values] : part) {
+    const bool per_particle = name.rfind("model.", 0) == 0 || name.rfind("integrator.", 0) == 0;
+    if (!per_particle) continue;
+    if (values.size() % particles != 0)
+      throw std::logic_error(name + " is not a per-particle array: it cannot be gathered");
+    values = ranks.gather(values, static_cast<int>(values.size() / particles));
+  }
+  return part;
+}
+
+}  // namespace
+
 void CheckpointOutput::write(const RunParts& run) const {
-  CheckpointWriter w;
-  w.add("config", run.config.source);
-  w.add("config.file", run.config.file);
-  w.add("run.time", std::vector<double>{run.state.time});
-  w.add("run.steps", std::vector<double>{double(run.summary.steps)});
-  w.add("state.position", run.state.position);
-  w.add("state.velocity", run.state.velocity);
-  w.add("state.broken", run.post_step.broken());
-  for (const NamedArrays& part : {run.post_step.saved_state(), run.dynamics.saved_state(),
-                                  run.integrator.saved_state(), observers_state_()})
-    for (const auto& [name, values] : part) w.add(name, values);
-  w.write(run.config.output.dir + "/checkpoint.bin");
+  const RunRanks& ranks = run.ranks;
+  const int n = run.scene.particles.count();
+  // in the global numbering, whatever the number of ranks, so a run resumes on any number
+  const std::vector<double> position = ranks.gather(run.state.position, 3);
+  const std::vector<double> velocity = ranks.gather(run.state.velocity, 3);
+  const std::vector<std::uint8_t> broken = ranks.gather_bonds(run.post_step.broken());
+  NamedArrays parts;
+  for (const NamedArrays& part :
+       {gathered(ranks, run.post_step.saved_state(), n), run.dynamics.saved_state(),
+        gathered(ranks, run.integrator.saved_state(), n)})
+    for (const auto& array : part) parts.push_back(array);
+  ranks.write([&] {
+    if (!ranks.root()) return;
+    CheckpointWriter w;
+    w.add("config", run.config.source);
+    w.add("config.file", run.config.file);
+    w.add("run.time", std::vector<double>{run.state.time});
+    w.add("run.steps", std::vector<double>{double(run.summary.steps)});
+    w.add("state.position", position);
+    w.add("state.velocity", velocity);
+    w.add("state.broken", broken);
+    for (const NamedArrays& part : {parts, observers_state_()})
+      for (const auto& [name, values] : part) w.add(name, values);
+    w.write(run.config.output.dir + "/checkpoint.bin");
+  });
 }
 
 NamedArrays CheckpointOutput::saved_state() const {

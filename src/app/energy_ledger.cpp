@@ -17,17 +17,30 @@ EnergyLedger::EnergyLedger(const Dynamics& dynamics) {
 void EnergyLedger::before_step(const RunParts& run) { before_ = run.state.position; }
 
 void EnergyLedger::after_step(const RunParts& run, const Step& step) {
-  const BookedStep booked{before_.data(), run.state.position.data(), step.h(),
-                          [&step] { return step.kinetic(); }};
-  const std::vector<double> amounts = run.dynamics.booked(booked);
+  const std::vector<double>& after = run.state.position;
+  if (run.ranks.distributed()) {
+    // Each rank books its own rows' share: elsewhere the step moves nothing in its books.
+    const std::size_t first = 3 * std::size_t(run.ranks.begin()),
+                      end = 3 * std::size_t(run.ranks.end());
+    std::copy(after.begin(), after.begin() + first, before_.begin());
+    std::copy(after.begin() + end, after.end(), before_.begin() + end);
+  }
+  const BookedStep booked{before_.data(), after.data(), step.h(),
+                          [&step] { return step.own_kinetic(); }};
+  std::vector<double> amounts = run.dynamics.booked(booked);
+  run.ranks.sum(amounts);
   for (std::size_t e = 0; e < loads_; ++e) entries_[e].value += amounts[e];
   entries_[loads_].value = run.post_step.released().plastic;
   entries_[loads_ + 1].value = run.post_step.released().fracture;
 }
 
 void EnergyLedger::sample(const RunParts& run) {
-  kinetic_ = kinetic_energy(run.scene.particles.mass, run.state.velocity);
-  elastic_ = run.model.elastic_energy(run.state.position.data());
+  const RunRanks& ranks = run.ranks;
+  kinetic_ = ranks.sum(
+      kinetic_energy(run.scene.particles.mass, run.state.velocity, ranks.begin(), ranks.end()));
+  elastic_ = ranks.distributed()
+                 ? ranks.sum(run.model.rows_energy(run.state.position.data(), ranks.rows()))
+                 : run.model.elastic_energy(run.state.position.data());
   if (!sampled_) {
     initial_ = kinetic_ + elastic_;
     sampled_ = true;

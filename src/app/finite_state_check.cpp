@@ -9,23 +9,24 @@ namespace fissure {
 
 namespace {
 
-// Index of the first particle whose position or velocity is not finite, or −1.
-int first_nonfinite(const State& s) {
+// Index of the first particle of [begin, end) whose position or velocity is not finite, or n.
+int first_nonfinite(const State& s, int begin, int end) {
   const int n = static_cast<int>(s.position.size() / 3);
   int first = n;
 #pragma omp parallel for reduction(min : first) schedule(static)
-  for (int i = 0; i < n; ++i)
+  for (int i = begin; i < end; ++i)
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(s.position[3 * i + k]) || !std::isfinite(s.velocity[3 * i + k]))
         first = std::min(first, i);
-  return first == n ? -1 : first;
+  return first;
 }
 
 }  // namespace
 
 void FiniteStateCheck::after_step(const RunParts& run, const Step&) {
-  const int bad = first_nonfinite(run.state);
-  if (bad < 0) return;
+  const int n = run.scene.particles.count();
+  const int bad = run.ranks.min(first_nonfinite(run.state, run.ranks.begin(), run.ranks.end()));
+  if (bad == n) return;
   const double* x = &run.scene.particles.reference[3 * bad];
   throw StopRun(
       "nonfinite",

@@ -8,8 +8,15 @@
 namespace fissure {
 
 double Step::kinetic() const {
-  if (!kinetic_) kinetic_ = kinetic_energy(run_.scene.particles.mass, run_.state.velocity);
+  if (!kinetic_) kinetic_ = run_.ranks.sum(own_kinetic());
   return *kinetic_;
+}
+
+double Step::own_kinetic() const {
+  if (!own_kinetic_)
+    own_kinetic_ = kinetic_energy(run_.scene.particles.mass, run_.state.velocity,
+                                  run_.ranks.begin(), run_.ranks.end());
+  return *own_kinetic_;
 }
 
 const std::vector<double>& saved_array(const NamedArrays& state, const std::string& name) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "app/run_ranks.hpp"
 #include "app/simulation.hpp"
 #include "core/named_arrays.hpp"
 #include "fracture/post_step.hpp"
@@ -28,6 +29,10 @@ struct RunParts {
   Integrator& integrator;
   const State& state;
   const RunSummary& summary;
+  // The ranks the run is spread over: a rank's state is current on its own rows and their
+  // ghosts only, so whatever an observer reads of every particle is reduced or gathered over
+  // them (docs/mpi.md); one rank, on its own, has every row.
+  const RunRanks& ranks;
   // Two times closer than this are the same output time: 1e-9 dt.
   double tolerance() const { return 1e-9 * summary.dt; }
 };
@@ -37,12 +42,15 @@ class Step {
  public:
   Step(double h, const RunParts& run) : h_(h), run_(run) {}
   double h() const { return h_; }
+  // Over all ranks: collective, so every rank asks, or none.
   double kinetic() const;
+  // This rank's rows' share.
+  double own_kinetic() const;
 
  private:
   double h_;
   const RunParts& run_;
-  mutable std::optional<double> kinetic_;
+  mutable std::optional<double> kinetic_, own_kinetic_;
 };
 
 // Thrown by a check to end the run early; summary.json records `status` (nonfinite | unstable)

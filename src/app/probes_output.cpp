@@ -10,12 +10,11 @@ namespace fissure {
 
 namespace {
 
-// The largest particle speed |v_i|.
-double max_speed(const std::vector<double>& velocity) {
+// The largest particle speed |v_i| over the particles [begin, end).
+double max_speed(const std::vector<double>& velocity, int begin, int end) {
   double largest = 0;
-  const int n = static_cast<int>(velocity.size() / 3);
 #pragma omp parallel for reduction(max : largest) schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = begin; i < end; ++i) {
     const double* v = &velocity[3 * i];
     largest = std::max(largest, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
@@ -31,8 +30,11 @@ ProbesOutput::ProbesOutput(const Scene& scene, EnergyLedger& ledger)
       schedule_(scene.config.output.probe_every, 0.0) {}
 
 void ProbesOutput::start(const RunParts& run) {
-  file_ = std::make_unique<ProbesCsv>(path_, run.config, run.scene.particles, std::move(members_),
-                                      ledger_.names());
+  run.ranks.write([&] {
+    if (run.ranks.root())
+      file_ = std::make_unique<ProbesCsv>(path_, run.config, run.scene.particles,
+                                          std::move(members_), ledger_.names());
+  });
 }
 
 void ProbesOutput::resume(const RunParts& run, const NamedArrays& state) {
@@ -40,6 +42,7 @@ void ProbesOutput::resume(const RunParts& run, const NamedArrays& state) {
   last_time_ = saved_number(state, "probes.last_time");
   max_speed_ = saved_number(state, "probes.max_speed");
   const double bytes = saved_number(state, "probes.bytes");
+  if (!run.ranks.root()) return;  // the root writes probes.csv
   if (!std::filesystem::exists(path_) || std::filesystem::file_size(path_) < bytes)
     throw InputError(path_, "",
                      "shorter than when the checkpoint was written: cannot resume without the "
@@ -59,12 +62,17 @@ void ProbesOutput::finish(const RunParts& run, RunEnd end) {
 }
 
 void ProbesOutput::write_row(const RunParts& run) {
+  const RunRanks& ranks = run.ranks;
   ledger_.sample(run);
-  max_speed_ = std::max(max_speed_, max_speed(run.state.velocity));
+  max_speed_ =
+      std::max(max_speed_, ranks.max(max_speed(run.state.velocity, ranks.begin(), ranks.end())));
   std::vector<double> columns;
   for (const auto& [name, value] : ledger_.entries()) columns.push_back(value);
-  file_->write_row(run.state.time, ledger_.kinetic(), ledger_.elastic(), run.state.position,
-                   columns);
+  const std::vector<double> position = ranks.gather(run.state.position, 3);
+  ranks.write([&] {
+    if (ranks.root())
+      file_->write_row(run.state.time, ledger_.kinetic(), ledger_.elastic(), position, columns);
+  });
   last_time_ = run.state.time;
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/checkpoint.hpp"
 #include "app/run_observers.hpp"
+#include "app/run_ranks.hpp"
 #include "app/summary_json.hpp"
 #include "app/time_step.hpp"
 #include "core/error.hpp"
@@ -47,6 +48,9 @@ class Simulation {
   void finish(RunEnd end);
   // Takes the run back to the checkpoint's step; the output after it is dropped.
   void resume(const CheckpointReader& checkpoint);
+  // Spreads the run over the ranks (ranks_): each advances and breaks its own rows. Throws
+  // InputError for an integrator or effect that cannot be distributed yet.
+  void distribute();
   void report_progress(Clock::time_point start, bool final);
 
   const Config& config_;
@@ -59,6 +63,7 @@ class Simulation {
   std::unique_ptr<PostStep> post_step_;
   State state_;
   RunSummary summary_;
+  std::unique_ptr<RunRanks> ranks_;
   std::unique_ptr<RunParts> parts_;
   RunObservers observers_;
 };
@@ -71,6 +76,10 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
   integrator_->check(*dynamics_);  // before the output folder is touched
   post_step_ = std::make_unique<PostStep>(scene_, *model_, true);
+  ranks_ = std::make_unique<RunRanks>(scene_, options.comm);
+  if (ranks_->distributed()) distribute();
+  options_.progress = options_.progress && ranks_->root();
+  summary_.ranks = ranks_->size();
   summary_.integrator = config.integrator.type;
   summary_.particles = scene_.particles.count();
   summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
@@ -78,7 +87,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   summary_.model_statistics = model_->statistics();
   summary_.dt = run_time_step(config, *integrator_, summary_.stable_dt);
   parts_ = std::make_unique<RunParts>(config_, scene_, *model_, *dynamics_, *post_step_,
-                                      *integrator_, state_, summary_);
+                                      *integrator_, state_, summary_, *ranks_);
   // Every observer checks its options here, before the output folder is touched.
   observers_ = make_run_observers(scene_, *dynamics_, [this] { return observers_.saved_state(); });
   std::filesystem::create_directories(config.output.dir);
@@ -86,12 +95,27 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   state_.velocity = scene_.particles.velocity;
   dynamics_->constrain_velocity(0.0, state_.velocity.data());
   if (options.resume) {
-    resume(*options.resume);
+    ranks_->agree([&] { resume(*options.resume); });
   } else {
     for (auto& observer : observers_.checks) observer->start(*parts_);
     for (auto& observer : observers_.outputs) observer->start(*parts_);
   }
-  std::filesystem::remove(config.output.dir + "/summary.json");
+  if (ranks_->root()) std::filesystem::remove(config.output.dir + "/summary.json");
+}
+
+void Simulation::distribute() {
+  const std::string& type = config_.integrator.type;
+  if (!integrator_->distributable())
+    throw InputError(config_.file, "integrator.type",
+                     fmt::format("'{}' cannot run over several ranks yet ({} ranks were started); "
+                                 "velocity_verlet and symplectic_euler can (docs/mpi.md)",
+                                 type, ranks_->size()));
+  try {
+    dynamics_->distribute(ranks_->halo());
+    post_step_->distribute(ranks_->halo());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(config_.file, "", e.what());
+  }
 }
 
 void Simulation::resume(const CheckpointReader& c) {
@@ -127,9 +151,16 @@ void Simulation::finish(RunEnd end) {
   for (auto& observer : observers_.checks) observer->summarize(summary_);
   for (auto& observer : observers_.outputs) observer->summarize(summary_);
   summary_.wall_seconds = seconds_since(setup_start_);
-  summary_.peak_rss_mb = peak_rss_mb();
-  summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
-  summary_.fragments = count_fragments(scene_.families, *model_);
+  summary_.peak_rss_mb = ranks_->max(peak_rss_mb());
+  if (ranks_->distributed()) {
+    // each rank's model knows its own rows' bonds: the root counts from all of them
+    const std::vector<std::uint8_t> broken = ranks_->gather_bonds(post_step_->broken());
+    summary_.broken_bonds = std::count(broken.begin(), broken.end(), 1) / 2;
+    summary_.fragments = ranks_->root() ? count_fragments(scene_.families, broken) : 0;
+  } else {
+    summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
+    summary_.fragments = count_fragments(scene_.families, *model_);
+  }
   summary_.post_steps = static_cast<long>(post_step_->calls());
   summary_.force_evaluations = dynamics_->force_evaluations();
   summary_.integrator_statistics = integrator_->statistics();
@@ -139,7 +170,7 @@ void Simulation::stop(const std::string& status, const std::string& message) {
   summary_.status = status;
   summary_.message = message;
   finish(status == "nonfinite" ? RunEnd::nonfinite : RunEnd::stopped);
-  write_summary(config_.output.dir + "/summary.json", summary_);
+  if (ranks_->root()) write_summary(config_.output.dir + "/summary.json", summary_);
   throw RunError(message);
 }
 
@@ -151,7 +182,7 @@ void Simulation::stop_writing(const OutputError& error) {
   summary_.message = message;
   finish(RunEnd::output_failed);
   try {
-    write_summary(dir + "/summary.json", summary_);
+    if (ranks_->root()) write_summary(dir + "/summary.json", summary_);
   } catch (const OutputError& also) {
     message += fmt::format(" ({} could not record it either: {})", also.path(), also.reason());
   }
@@ -228,7 +259,9 @@ RunSummary Simulation::run_steps() {
   if (options_.progress) report_progress(start, true);
   summary_.seconds_per_step = summary_.steps > 0 ? stepping_seconds / summary_.steps : 0.0;
   finish(RunEnd::completed);
-  write_summary(config_.output.dir + "/summary.json", summary_);
+  ranks_->write([&] {
+    if (ranks_->root()) write_summary(config_.output.dir + "/summary.json", summary_);
+  });
   return summary_;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
 // The shared run loop: integrator step, checks, output as it goes, summary at the end.
+#include <mpi.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,10 +17,15 @@ struct RunOptions {
   // Go on from this checkpoint of a run of the same config into config.output.dir (the output
   // after the checkpoint is dropped), instead of starting at t = 0.
   const CheckpointReader* resume = nullptr;
+  // The ranks to spread the run over: MPI_COMM_NULL for those mpirun started (one without it).
+  // On several, each rank advances its own rows and writes its piece of each frame
+  // (docs/mpi.md); every rank calls run_simulation with the same config.
+  MPI_Comm comm = MPI_COMM_NULL;
 };
 
 struct RunSummary {
   long particles = 0;
+  int ranks = 1;   // MPI ranks the run was spread over
   long bonds = 0;  // each pair counted once
   long steps = 0;
   double dt = 0;
@@ -26,7 +33,7 @@ struct RunSummary {
   double wall_seconds = 0;
   double seconds_per_step = 0;
   double setup_seconds = 0;
-  double peak_rss_mb = 0;
+  double peak_rss_mb = 0;            // over several ranks, the largest rank's
   double max_speed = 0;              // the largest particle speed at a probe row [m/s]
   double energy_drift = 0;           // the energy ledger's balance error at the end (relative)
   long broken_bonds = 0;             // each pair counted once, initial cracks included

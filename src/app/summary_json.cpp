@@ -35,6 +35,7 @@ std::string summary_json(const RunSummary& s) {
   Json j = Json::object();
   j["status"] = s.status;
   j["particles"] = s.particles;
+  j["ranks"] = s.ranks;
   j["bonds"] = s.bonds;
   j["steps"] = s.steps;
   j["dt"] = number(s.dt);

@@ -12,6 +12,7 @@
 
 #include "app/checkpoint.hpp"
 #include "app/info.hpp"
+#include "app/run_ranks.hpp"
 #include "app/simulation.hpp"
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
@@ -23,25 +24,20 @@
 
 namespace {
 
-// The number of ranks mpirun started this process among (Open MPI's OMPI_COMM_WORLD_SIZE,
-// MPICH's PMI_SIZE), 1 when it was not started by mpirun; read without initialising MPI.
-int launched_ranks() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
-    if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
-  return 1;
-}
-
-// fissure run and study write one output folder: on several ranks each would run the whole
-// scene into it, since the run loop does not distribute yet (docs/mpi.md).
+// fissure study runs its scenes one after another into one folder: on several ranks each would
+// run the whole study into it (docs/mpi.md).
 void refuse_several_ranks(const std::string& verb) {
-  if (const int ranks = launched_ranks(); ranks > 1)
+  if (const int ranks = fissure::launched_ranks(); ranks > 1)
     throw fissure::InputError(
         "", "",
-        fmt::format("fissure {} was started on {} MPI ranks, but its run loop does not "
-                    "distribute yet: each rank would run the whole scene into the same output "
-                    "folder. Run it on one rank (docs/mpi.md says what is distributed so far)",
-                    verb, ranks));
+        fmt::format("fissure {} was started on {} MPI ranks, but it runs on one: each rank would "
+                    "run the whole {} into the same output folder. Run it on one rank; `mpirun "
+                    "fissure run` spreads one scene over ranks (docs/mpi.md)",
+                    verb, ranks, verb));
 }
+
+// Over several ranks every rank reaches the same end: rank 0 speaks for them.
+bool speaks() { return fissure::launched_rank() == 0; }
 
 }  // namespace
 
@@ -113,7 +109,6 @@ int main(int argc, char** argv) {
                  s.failed, s.plotted ? ", work_precision.png/.svg" : "", s.folder);
       return 0;
     }
-    if (*run) refuse_several_ranks("run");
     std::unique_ptr<fissure::CheckpointReader> checkpoint;
     if (*run && resume_dir.empty() == config_path.empty())
       throw fissure::InputError("", "", "fissure run takes a scene file or --resume OUT_DIR");
@@ -133,20 +128,21 @@ int main(int argc, char** argv) {
     options.progress = isatty(fileno(stderr));
     options.resume = checkpoint.get();
     const auto s = fissure::run_simulation(config, options);
-    fmt::print(
-        "{}: {} particles, {} bonds, {} steps of {:.3g} s in {:.2f} s ({:.3g} s/step), "
-        "energy drift {:.2e}, output in {}\n",
-        config.name, s.particles, s.bonds, s.steps, s.dt, s.wall_seconds, s.seconds_per_step,
-        s.energy_drift, config.output.dir);
+    if (speaks())
+      fmt::print(
+          "{}: {} particles, {} bonds, {} steps of {:.3g} s in {:.2f} s ({:.3g} s/step), "
+          "energy drift {:.2e}, output in {}\n",
+          config.name, s.particles, s.bonds, s.steps, s.dt, s.wall_seconds, s.seconds_per_step,
+          s.energy_drift, config.output.dir);
     return 0;
   } catch (const fissure::InputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    if (speaks()) fmt::print(stderr, "error: {}\n", e.what());
     return 2;
   } catch (const fissure::RunError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    if (speaks()) fmt::print(stderr, "error: {}\n", e.what());
     return 3;
   } catch (const std::exception& e) {  // e.g. an output folder that cannot be created
-    fmt::print(stderr, "error: {}\n", e.what());
+    if (speaks()) fmt::print(stderr, "error: {}\n", e.what());
     return 3;
   }
 }

@@ -11,9 +11,10 @@ namespace fissure {
 
 using Point = std::array<double, 3>;
 
-// What the particles bring to a contact (contact/contact_particles.hpp), and Coulomb's μ.
+// What the particles bring to a contact (contact/contact_particles.hpp), and Coulomb's μ; the
+// particles [begin, end) it acts on (a rank's rows, or all).
 struct ContactLaw {
-  int count;
+  int begin, end;
   const double* radius;     // ½ V^(1/3) per particle
   const double* stiffness;  // penalty stiffness per particle [N/m]
   double friction;
@@ -25,7 +26,7 @@ class ColliderShape {
   // Where its reference point starts: a sphere's centre, a plane's point, 0 for a box (whose
   // position is its offset from where the config put it).
   virtual Point origin() const = 0;
-  // Adds the contact force on every particle (positions y, velocities v, 3N) to f, with the
+  // Adds the contact force on the law's particles (positions y, velocities v, 3N) to f, with the
   // collider's reference point at `position` moving at `velocity`; returns the force the
   // particles exert on it (the reaction).
   virtual Point add_forces(const ContactLaw& law, const Point& position, const Point& velocity,
@@ -47,7 +48,7 @@ class ShapeContact : public ColliderShape {
     const Shape& shape = static_cast<const Shape&>(*this);
     double rx = 0, ry = 0, rz = 0;
 #pragma omp parallel for reduction(+ : rx, ry, rz) schedule(static)
-    for (int i = 0; i < law.count; ++i) {
+    for (int i = law.begin; i < law.end; ++i) {
       double normal[3];
       const double depth = shape.penetration(position.data(), y + 3 * i, law.radius[i], normal);
       if (depth <= 0) continue;

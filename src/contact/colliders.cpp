@@ -1,8 +1,12 @@
 #include "contact/colliders.hpp"
 
+#include <algorithm>
+
 #include "contact/collider_registry.hpp"
 #include "contact/contact_particles.hpp"
 #include "core/error.hpp"
+#include "parallel/collective.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -17,17 +21,33 @@ Colliders::Colliders(const Scene& scene)
   auto particles = contact_particles(scene);
   radius_ = std::move(particles.radius);
   stiffness_ = std::move(particles.stiffness);
+  end_ = static_cast<int>(radius_.size());
 }
 
 Colliders::~Colliders() = default;
 
 void Colliders::add_forces(const double* y, const double* v, double* f) {
-  const ContactLaw law{static_cast<int>(radius_.size()), radius_.data(), stiffness_.data(),
-                       friction_};
+  const ContactLaw law{begin_, end_, radius_.data(), stiffness_.data(), friction_};
   for (State& c : state_) c.reaction = c.shape->add_forces(law, c.position, c.velocity, y, v, f);
 }
 
+void Colliders::distribute(const Halo& halo) {
+  begin_ = halo.begin();
+  end_ = halo.end();
+  halo_ = &halo;
+}
+
 void Colliders::advance(double h) {
+  if (halo_) {
+    // each rank pushed on its own rows: the reaction is the sum over the ranks
+    std::vector<double> reactions;
+    for (const State& c : state_)
+      reactions.insert(reactions.end(), c.reaction.begin(), c.reaction.end());
+    sum_over_ranks(halo_->comm(), reactions);
+    for (std::size_t k = 0; k < state_.size(); ++k)
+      std::copy(reactions.begin() + 3 * k, reactions.begin() + 3 * k + 3,
+                state_[k].reaction.begin());
+  }
   for (State& c : state_) {
     if (!c.settings.kinematic)
       for (int k = 0; k < 3; ++k)

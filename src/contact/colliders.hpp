@@ -11,13 +11,19 @@
 namespace fissure {
 
 class ColliderShape;  // contact/collider_shape.hpp
+class Halo;           // parallel/halo.hpp
 
 class Colliders {
  public:
   explicit Colliders(const Scene& scene);
   ~Colliders();
-  // Adds the contact force on every particle to f (3N) and records each collider's reaction.
+  // Adds the contact force on every particle (of distribute()'s range) to f (3N) and records
+  // each collider's reaction.
   void add_forces(const double* y, const double* v, double* f);
+  // Over several ranks (issue 18; docs/mpi.md): add_forces() pushes on the halo's rows only,
+  // and advance() sums the reactions over its ranks (in rank order, the same on every rank;
+  // collective). The halo must outlive this.
+  void distribute(const Halo& halo);
   // Moves the colliders by one step h: kinematic ones at their velocity, dynamic spheres by
   // semi-implicit Euler under the reaction of the last add_forces and gravity.
   void advance(double h);
@@ -40,6 +46,8 @@ class Colliders {
   std::vector<double> radius_;     // contact radius per particle: ½ V^(1/3)
   std::vector<double> stiffness_;  // penalty stiffness per particle [N/m]
   double friction_;
+  int begin_ = 0, end_ = 0;  // the particles add_forces() pushes on
+  const Halo* halo_ = nullptr;
   std::array<double, 3> gravity_;
 };
 

@@ -32,18 +32,28 @@ class DisjointSets {
   std::vector<int> parent_, size_;
 };
 
-}  // namespace
-
-long count_fragments(const Families& families, const Model& model) {
+// The components of the graph of the bonds `intact(b)` keeps.
+template <class Intact>
+long components(const Families& families, Intact intact) {
   const int n = static_cast<int>(families.offsets.size()) - 1;
   DisjointSets sets(n);
-  long components = n;
+  long count = n;
   for (int i = 0; i < n; ++i)
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
       const int j = families.neighbors[b];
-      if (j > i && model.bond_intact(b) && sets.unite(i, j)) --components;
+      if (j > i && intact(b) && sets.unite(i, j)) --count;
     }
-  return components;
+  return count;
+}
+
+}  // namespace
+
+long count_fragments(const Families& families, const Model& model) {
+  return components(families, [&model](int b) { return model.bond_intact(b); });
+}
+
+long count_fragments(const Families& families, const std::vector<std::uint8_t>& broken) {
+  return components(families, [&broken](int b) { return broken.empty() || broken[b] == 0; });
 }
 
 }  // namespace fissure

@@ -1,7 +1,10 @@
 #include "fracture/post_step.hpp"
 
+#include <stdexcept>
+
 #include "core/error.hpp"
 #include "model/plastic_flow.hpp"
+#include "parallel/collective.hpp"
 
 namespace fissure {
 
@@ -22,18 +25,35 @@ bool PostStep::run(const double* y, const double* velocity, double dt) {
       released_.plastic += stored - model_.elastic_energy(y);
   }
   bool changed = false;
+  double released = 0;
   if (bond_breaking_ && bond_breaking_->find(y) > 0) {
     // breaking changes only the energy of the broken bonds' rows
     const std::vector<int>& rows = bond_breaking_->rows_to_change();
     const double before = measure_energy_ ? model_.rows_energy(y, rows) : 0;
     changed = bond_breaking_->apply() > 0;
-    if (measure_energy_) released_.fracture += before - model_.rows_energy(y, rows);
+    if (measure_energy_) released = before - model_.rows_energy(y, rows);
   }
+  if (bond_breaking_ && halo_) {
+    // whether any rank's bonds broke decides collective work (the integrator's new forces)
+    std::vector<double> totals = {changed ? 1.0 : 0.0, released};
+    sum_over_ranks(halo_->comm(), totals);
+    changed = totals[0] > 0;
+    released = totals[1];
+  }
+  released_.fracture += released;
   if (embedded_mesh_) {
     if (changed) embedded_mesh_->crack(bond_breaking_->broken(), bond_breaking_->changed());
     if (velocity) embedded_mesh_->advance(velocity, dt);
   }
   return changed;
+}
+
+void PostStep::distribute(const Halo& halo) {
+  if (embedded_mesh_)
+    throw std::invalid_argument(
+        "output.surface and output.tets cannot be written over several ranks yet (docs/mpi.md)");
+  if (bond_breaking_) bond_breaking_->distribute(halo);
+  halo_ = &halo;
 }
 
 const std::vector<double>* PostStep::damage() const {

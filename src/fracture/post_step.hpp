@@ -17,6 +17,11 @@ class PostStep {
   // release at fixed positions (released()): one or two extra energy evaluations on the steps
   // where bonds yield or break, and one per step before the return map of a plastic scene.
   PostStep(const Scene& scene, Model& model, bool measure_energy = false);
+  // Over several ranks (issue 18; docs/mpi.md): bond breaking tests and changes this rank's rows
+  // (BondBreaking::distribute), run() returns whether bonds broke on any rank and books the
+  // energy released on all of them, the same on every rank. Throws std::invalid_argument naming
+  // the key of an effect that cannot be distributed yet. The halo must outlive this.
+  void distribute(const Halo& halo);
   // Returns true if the bond set changed, so the integrator must drop what it derived from it.
   // `velocity` and the step `dt` move the embedded mesh's vertices with `surface_motion:
   // velocity` (Eq 22).
@@ -49,6 +54,7 @@ class PostStep {
   std::size_t calls_ = 0;
   bool measure_energy_;
   Released released_;
+  const Halo* halo_ = nullptr;
 };
 
 }  // namespace fissure

@@ -2,6 +2,7 @@
 
 #include <arkode/arkode_arkstep.h>
 #include <fmt/format.h>
+#include <nvector/nvector_mpiplusx.h>
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "integrators/arkode_linear_solver.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -23,13 +25,20 @@ struct Arkode::Solver {
     if (linear_solver && SUNLinSolFree(linear_solver) != 0)
       std::fprintf(stderr, "warning: SUNDIALS: SUNLinSolFree failed\n");
     N_VDestroy(u);
+    N_VDestroy(local);
     if (SUNContext_Free(&context) != 0)
       std::fprintf(stderr, "warning: SUNDIALS: SUNContext_Free failed\n");
   }
   Dynamics& dynamics;
   SUNContext context = nullptr;
   void* memory = nullptr;
-  N_Vector u = nullptr;  // [y − origin; v]
+  N_Vector u = nullptr;  // [y − origin; v] of rows [first, first + count/3)
+  // Over several ranks: u is an MPI+X vector over the ranks' `local` parts, each [y − origin; v]
+  // of its own rows; velocity and acceleration are 3N, in the global numbering.
+  N_Vector local = nullptr;
+  std::size_t first = 0, count = 0;  // in coordinates: 3 × the first row, 3 × the rows
+  bool distributed = false;
+  std::vector<double> velocity, acceleration;
   // The positions at the first step: ARKODE integrates the displacement from them, so rtol
   // weighs the motion rather than the distance from the coordinate origin.
   std::vector<double> origin;
@@ -47,21 +56,31 @@ namespace {
 using Solver = Arkode::Solver;
 using Acceleration = void (Dynamics::*)(double, const double*, const double*, double*);
 
-// u̇ = [v (if with_velocity, else 0); a(t, y, v)] for one part of the right-hand side.
+// u̇ = [v (if with_velocity, else 0); a(t, y, v)] for one part of the right-hand side, over the
+// rows u holds (all on one rank).
 template <Acceleration part, bool with_velocity>
 int rhs(realtype t, N_Vector u, N_Vector u_dot, void* user_data) {
   auto* s = static_cast<Solver*>(user_data);
   try {
-    const std::size_t n = s->origin.size();
+    const std::size_t n = s->count, first = s->first;
     const double* displacement = N_VGetArrayPointer(u);
     const double* v = displacement + n;
     double* out = N_VGetArrayPointer(u_dot);
-    for (std::size_t k = 0; k < n; ++k) s->position[k] = s->origin[k] + displacement[k];
+    for (std::size_t k = 0; k < n; ++k)
+      s->position[first + k] = s->origin[first + k] + displacement[k];
     if constexpr (with_velocity)
       std::copy(v, v + n, out);
     else
       std::fill(out, out + n, 0.0);
-    (s->dynamics.*part)(t, s->position.data(), v, out + n);
+    if (!s->distributed) {
+      (s->dynamics.*part)(t, s->position.data(), v, out + n);
+      return 0;
+    }
+    // the dynamics reads and writes the global numbering, the ghosts' positions from the halo
+    std::copy(v, v + n, s->velocity.begin() + first);
+    s->dynamics.share(s->position.data());
+    (s->dynamics.*part)(t, s->position.data(), s->velocity.data(), s->acceleration.data());
+    std::copy(s->acceleration.begin() + first, s->acceleration.begin() + first + n, out + n);
     return 0;
   } catch (...) {
     s->error = std::current_exception();
@@ -90,10 +109,22 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
     check(dynamics);
     solver_ = std::make_unique<Solver>(dynamics);
     Solver& s = *solver_;
-    s.u = N_VNew_Serial(static_cast<sunindextype>(2 * n), s.context);
-    if (!s.u) throw RunError("SUNDIALS: N_VNew_Serial failed");
+    s.first = 3 * std::size_t(dynamics.first_row());
+    s.count = 3 * std::size_t(dynamics.end_row()) - s.first;
+    s.distributed = dynamics.halo() != nullptr;
+    if (s.distributed) {
+      s.local = N_VNew_Serial(static_cast<sunindextype>(2 * s.count), s.context);
+      if (!s.local) throw RunError("SUNDIALS: N_VNew_Serial failed");
+      s.u = N_VMake_MPIPlusX(dynamics.halo()->comm(), s.local, s.context);
+      if (!s.u) throw RunError("SUNDIALS: N_VMake_MPIPlusX failed");
+      s.velocity = state.velocity;
+      s.acceleration.resize(n);
+    } else {
+      s.u = N_VNew_Serial(static_cast<sunindextype>(2 * n), s.context);
+      if (!s.u) throw RunError("SUNDIALS: N_VNew_Serial failed");
+    }
     s.origin = state.position;
-    s.position.resize(n);
+    s.position = state.position;
     using K = ArkodeMethod::Kind;
     switch (method_.kind) {
       case K::explicit_rk:
@@ -111,8 +142,9 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
   Solver& s = *solver_;
   if (!s.memory || reinitialise_) {
     double* u = N_VGetArrayPointer(s.u);
-    for (std::size_t k = 0; k < n; ++k) u[k] = state.position[k] - s.origin[k];
-    std::copy(state.velocity.begin(), state.velocity.end(), u + n);
+    const std::size_t first = s.first, rows = s.count;
+    for (std::size_t k = 0; k < rows; ++k) u[k] = state.position[first + k] - s.origin[first + k];
+    std::copy(state.velocity.begin() + first, state.velocity.begin() + first + rows, u + rows);
     if (!s.memory) {
       s.memory = ARKStepCreate(s.explicit_rhs, s.implicit_rhs, state.time, s.u, s.context);
       if (!s.memory) throw RunError("ARKODE: ARKStepCreate failed");
@@ -164,8 +196,10 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         "time.dt or another method",
         method_.name, state.time, ARKStepGetReturnFlagName(flag)));
   const double* u = N_VGetArrayPointer(s.u);
-  for (std::size_t k = 0; k < n; ++k) state.position[k] = s.origin[k] + u[k];
-  std::copy(u + n, u + 2 * n, state.velocity.begin());
+  const std::size_t first = s.first, rows = s.count;
+  for (std::size_t k = 0; k < rows; ++k) state.position[first + k] = s.origin[first + k] + u[k];
+  std::copy(u + rows, u + 2 * rows, state.velocity.begin() + first);
+  dynamics.share(state.position.data());  // the post-step reads the ghosts' new positions
   const double taken = reached - state.time;
   state.time = reached;
   return taken;

@@ -3,6 +3,7 @@
 // implicit–explicit additive Runge–Kutta through ARKStep, adaptive under rtol/atol or at a fixed
 // step. Each call takes one internal step (ARK_ONE_STEP), so the run loop's post-step runs after
 // every accepted internal step; a bond-set change re-initialises ARKODE at the current state.
+// Over several ranks (explicit methods) u holds the rank's own rows.
 #include <memory>
 #include <string>
 
@@ -23,6 +24,9 @@ class Arkode final : public Integrator {
     return settings_.fixed_step && method_.kind == ArkodeMethod::Kind::explicit_rk;
   }
   bool adaptive() const override { return !settings_.fixed_step; }
+  // Explicit methods over several ranks: u holds this rank's rows in an MPI+X vector, so its
+  // norms (adaptive steps) are global (issue 18; docs/mpi.md).
+  bool distributable() const override { return method_.kind == ArkodeMethod::Kind::explicit_rk; }
   Statistics statistics() const override;
   // New tolerances for the following steps (adaptive runs), e.g. to tighten them mid-run.
   void set_tolerances(double rtol, double atol);

@@ -15,6 +15,8 @@ void ColliderLoad::add(double, const double* y, const double* v, double* f) {
   add_to(force_, f);
 }
 
+void ColliderLoad::distribute(const Halo& halo) { colliders_.distribute(halo); }
+
 double ColliderLoad::booked(const BookedStep& step) const {
   return work_of(force_, step.before, step.after);
 }

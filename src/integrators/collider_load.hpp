@@ -14,6 +14,7 @@ class ColliderLoad : public Load {
   void add(double t, const double* y, const double* v, double* f) override;
   double booked(const BookedStep& step) const override;
   void end_step(double h) override { colliders_.advance(h); }
+  void distribute(const Halo& halo) override;
   // "dynamics.colliders": position and velocity of every collider.
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;

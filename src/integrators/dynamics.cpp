@@ -35,6 +35,7 @@ void Dynamics::distribute(const Halo& halo) {
     if (const std::string key = load->not_distributable(); !key.empty())
       throw std::invalid_argument(key + " cannot run over several ranks yet (docs/mpi.md)");
   model_.distribute(halo);
+  for (const auto& load : loads_) load->distribute(halo);
   halo_ = &halo;
 }
 

@@ -71,6 +71,8 @@ class Dynamics {
   void distribute(const Halo& halo);
   int first_row() const;
   int end_row() const;
+  // The halo of distribute(), or nullptr on one rank.
+  const Halo* halo() const { return halo_; }
   // Fills the ghosts' entries of y (3N) from the ranks that own them; nothing on one rank.
   // Collective.
   void share(double* y) const;

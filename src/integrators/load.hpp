@@ -11,6 +11,8 @@
 
 namespace fissure {
 
+class Halo;
+
 // A completed step as the ledger books it: positions at its start and end, its size, and
 // K = ½ Σ m|v|² at its end (computed once, when a term asks for it).
 struct BookedStep {
@@ -47,6 +49,10 @@ class Load {
   // for this load if its force on a particle reads other particles' state (self-contact), which
   // cannot be distributed yet; empty where each particle's force is its own.
   virtual std::string not_distributable() const { return {}; }
+  // The scene runs over several ranks (Dynamics::distribute): add() need only push on the
+  // halo's rows, and whatever the load sums over the particles (a dynamic collider's reaction)
+  // is summed over the ranks, collectively, in end_step().
+  virtual void distribute(const Halo&) {}
   // For checkpoints: its state, named "dynamics.<name>", and back.
   virtual NamedArrays saved_state() const { return {}; }
   virtual void restore_state(const NamedArrays&) {}

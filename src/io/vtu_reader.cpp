@@ -123,12 +123,58 @@ class Reader {
 
 }  // namespace
 
-VtuGrid read_vtu(const std::string& path) {
+namespace {
+
+std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the frame");
   std::stringstream content;
   content << in.rdbuf();
-  return Reader(path, content.str()).read();
+  return content.str();
+}
+
+// Appends `piece` to `grid`: its points after the grid's, its cells renumbered to them.
+void append(VtuGrid& grid, const VtuGrid& piece, const std::string& path) {
+  const long shift = grid.point_count();
+  const long cell_shift = grid.connectivity.size();
+  grid.points.insert(grid.points.end(), piece.points.begin(), piece.points.end());
+  for (const long c : piece.connectivity) grid.connectivity.push_back(c + shift);
+  for (const long o : piece.offsets) grid.offsets.push_back(o + cell_shift);
+  for (const auto& [name, array] : piece.point_data) {
+    VtuArray& into = grid.point_data[name];
+    if (shift > 0 && (into.values.size() != std::size_t(shift) * into.components ||
+                      into.components != array.components))
+      throw InputError(path, "", fmt::format("its pieces disagree on the point data '{}'", name));
+    into.components = array.components;
+    into.values.insert(into.values.end(), array.values.begin(), array.values.end());
+  }
+}
+
+// A .pvtu: its pieces (Piece Source, relative to it) read and joined in order.
+VtuGrid read_pieces(const std::string& path, const std::string& content) {
+  VtuGrid grid;
+  const auto slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  int pieces = 0;
+  for (auto at = content.find("<Piece"); at != std::string::npos;
+       at = content.find("<Piece", at + 1)) {
+    const std::string source = attribute(content.substr(at, content.find('>', at) - at), "Source");
+    if (source.empty()) throw InputError(path, "", "a Piece without a Source");
+    const std::string piece = folder + source;
+    append(grid, Reader(piece, slurp(piece)).read(), path);
+    ++pieces;
+  }
+  if (pieces == 0) throw InputError(path, "", "lists no piece");
+  return grid;
+}
+
+}  // namespace
+
+VtuGrid read_vtu(const std::string& path) {
+  const std::string content = slurp(path);
+  if (path.size() > 5 && path.compare(path.size() - 5, 5, ".pvtu") == 0)
+    return read_pieces(path, content);
+  return Reader(path, content).read();
 }
 
 }  // namespace fissure

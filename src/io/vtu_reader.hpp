@@ -19,7 +19,8 @@ struct VtuGrid {
   long point_count() const { return static_cast<long>(points.size() / 3); }
 };
 
-// Throws InputError naming the file when it cannot be read or is not in that form.
+// Throws InputError naming the file when it cannot be read or is not in that form. A .pvtu (a
+// frame of a run over several ranks) is read as its pieces joined in the order it lists them.
 VtuGrid read_vtu(const std::string& path);
 
 }  // namespace fissure

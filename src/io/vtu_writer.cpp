@@ -75,6 +75,24 @@ void write_particles_vtu(const std::string& path, const std::vector<double>& poi
   write_vtu(path, points, connectivity, 1, 1 /* VTK_VERTEX */, point_data, {});
 }
 
+void write_particles_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                          const std::vector<PointField>& fields, bool body_id) {
+  write_atomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+           "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+           "<PUnstructuredGrid GhostLevel=\"0\">\n<PPoints>\n"
+           "<PDataArray type=\"Float64\" Name=\"position\" NumberOfComponents=\"3\"/>\n"
+           "</PPoints>\n<PPointData>\n";
+    for (const auto& f : fields)
+      out << fmt::format("<PDataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n",
+                         f.name, f.components);
+    if (body_id) out << "<PDataArray type=\"Int32\" Name=\"body\" NumberOfComponents=\"1\"/>\n";
+    out << "</PPointData>\n";
+    for (const auto& piece : pieces) out << fmt::format("<Piece Source=\"{}\"/>\n", piece);
+    out << "</PUnstructuredGrid>\n</VTKFile>\n";
+  });
+}
+
 void PvdIndex::add(double time, const std::string& relative_file) {
   frames_.emplace_back(time, relative_file);
   write();

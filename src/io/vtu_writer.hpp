@@ -33,6 +33,11 @@ void write_particles_vtu(const std::string& path, const std::vector<double>& poi
                          const std::vector<PointField>& fields,
                          const std::vector<int>* body_id = nullptr);
 
+// The parallel file (.pvtu) that joins the pieces `pieces` (file names relative to it) of a
+// frame written with write_particles_vtu by several ranks, with the same `fields` and body ids.
+void write_particles_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                          const std::vector<PointField>& fields, bool body_id);
+
 // The ParaView collection file listing every frame written so far; rewritten atomically.
 class PvdIndex {
  public:

@@ -44,22 +44,65 @@ void agree_on_error(MPI_Comm comm, std::exception_ptr error) {
   throw RunError(fmt::format("rank {}: {}", first, message));
 }
 
-std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                 const double* values, int width) {
+namespace {
+
+// gather_owned for entries of type T, `width` per row, sent as bytes.
+template <class T>
+std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, const T* values,
+                           int width) {
   if (boundaries.empty()) throw std::invalid_argument("gather_owned: no boundaries");
   const int rank = rank_in_split(comm, boundaries, boundaries.back(), "gather_owned");
   const int size = static_cast<int>(boundaries.size()) - 1;
+  const int entry = width * static_cast<int>(sizeof(T));
   std::vector<int> counts(size), displacements(size);
   for (int r = 0; r < size; ++r) {
-    counts[r] = (boundaries[r + 1] - boundaries[r]) * width;
-    displacements[r] = boundaries[r] * width;
+    counts[r] = (boundaries[r + 1] - boundaries[r]) * entry;
+    displacements[r] = boundaries[r] * entry;
   }
-  std::vector<double> gathered(rank == 0 ? static_cast<std::size_t>(boundaries.back()) * width : 0);
+  std::vector<T> gathered(rank == 0 ? static_cast<std::size_t>(boundaries.back()) * width : 0);
   check(MPI_Gatherv(values + static_cast<std::size_t>(boundaries[rank]) * width, counts[rank],
-                    MPI_DOUBLE, gathered.data(), counts.data(), displacements.data(), MPI_DOUBLE, 0,
+                    MPI_BYTE, gathered.data(), counts.data(), displacements.data(), MPI_BYTE, 0,
                     comm),
         "MPI_Gatherv");
   return gathered;
+}
+
+}  // namespace
+
+std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
+                                 const double* values, int width) {
+  return gather_rows(comm, boundaries, values, width);
+}
+
+std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
+                                       const std::uint8_t* values, int width) {
+  return gather_rows(comm, boundaries, values, width);
+}
+
+void sum_over_ranks(MPI_Comm comm, std::vector<double>& values) {
+  int size = 1;
+  check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+  const int count = static_cast<int>(values.size());
+  std::vector<double> all(static_cast<std::size_t>(size) * count);
+  check(MPI_Allgather(values.data(), count, MPI_DOUBLE, all.data(), count, MPI_DOUBLE, comm),
+        "MPI_Allgather");
+  for (int k = 0; k < count; ++k) {
+    double sum = all[k];
+    for (int r = 1; r < size; ++r) sum += all[static_cast<std::size_t>(r) * count + k];
+    values[k] = sum;
+  }
+}
+
+double max_over_ranks(MPI_Comm comm, double value) {
+  double largest = value;
+  check(MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, comm), "MPI_Allreduce");
+  return largest;
+}
+
+int min_over_ranks(MPI_Comm comm, int value) {
+  int smallest = value;
+  check(MPI_Allreduce(&value, &smallest, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
+  return smallest;
 }
 
 }  // namespace fissure

@@ -3,6 +3,7 @@
 // with its message, never a hang; and the owned pieces of an array brought together on rank 0.
 #include <mpi.h>
 
+#include <cstdint>
 #include <exception>
 #include <string>
 #include <vector>
@@ -32,5 +33,14 @@ void agree(MPI_Comm comm, Work&& work) {
 // the other ranks. Collective.
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                  const double* values, int width);
+// The same for bytes (per-bond flags, with the rows' first bonds as the boundaries).
+std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
+                                       const std::uint8_t* values, int width);
+
+// Each entry summed over the ranks in rank order, the same bits on every rank whatever the MPI
+// library's reduction order. Collective.
+void sum_over_ranks(MPI_Comm comm, std::vector<double>& values);
+double max_over_ranks(MPI_Comm comm, double value);
+int min_over_ranks(MPI_Comm comm, int value);
 
 }  // namespace fissure

@@ -101,27 +101,43 @@ TEST(BadInput, MissingConfigFile) {
       << outcome.output;
 }
 
-// fissure run under mpirun on 2 ranks: the run loop does not distribute yet, so rather than two
-// whole runs writing one folder, each rank refuses before anything is written (docs/mpi.md).
-TEST(BadInput, RunOnSeveralRanksIsRefusedBeforeAnythingIsWritten) {
+// `mpirun -np 2 fissure run`: an explicit integrator runs over both ranks (rank 0 speaks,
+// summary.json records the ranks, frames are .pvtu); an integrator that cannot be spread over
+// ranks yet is refused before the output folder is touched, with exit code 2, the key, and one
+// message, not one per rank; `fissure study` runs on one rank only (docs/mpi.md).
+TEST(BadInput, WhatCannotRunOnSeveralRanksIsRefusedBeforeAnythingIsWritten) {
   const auto dir = test::scratch_dir("ranks");
   test::write_file(dir / "scene.yaml", scene(kBox));
   const auto out = dir / "out";
-  const auto outcome = test::run_shell(
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun -np 2 "
-      "--oversubscribe " +
-      std::string(FISSURE_BINARY) + " run " + (dir / "scene.yaml").string() + " --out " +
-      out.string());
-  EXPECT_NE(outcome.exit_code, 0);
-  EXPECT_NE(outcome.output.find("fissure run was started on 2 MPI ranks, but its run loop does "
-                                "not distribute yet"),
-            std::string::npos)
-      << outcome.output;
+  auto on_two_ranks = [](const std::string& args) {
+    return test::run_shell(
+        "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun -np 2 "
+        "--oversubscribe " +
+        std::string(FISSURE_BINARY) + " " + args);
+  };
+  const auto refused = on_two_ranks("run " + (dir / "scene.yaml").string() + " --out " +
+                                    out.string() + " --set integrator.type=petsc_newton");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  const std::string expected =
+      "scene.yaml: integrator.type: 'petsc_newton' cannot run over several ranks yet";
+  const auto first = refused.output.find(expected);
+  EXPECT_NE(first, std::string::npos) << refused.output;
+  EXPECT_EQ(refused.output.find(expected, first + 1), std::string::npos) << refused.output;
   EXPECT_FALSE(std::filesystem::exists(out));
-  // one rank, as before
-  EXPECT_EQ(test::run_fissure("run " + (dir / "scene.yaml").string() + " --out " + out.string())
-                .exit_code,
-            0);
+  const auto study = on_two_ranks("study " + (dir / "study.yaml").string());
+  EXPECT_EQ(study.exit_code, 2) << study.output;
+  EXPECT_NE(study.output.find("fissure study was started on 2 MPI ranks"), std::string::npos)
+      << study.output;
+
+  const auto spread = on_two_ranks("run " + (dir / "scene.yaml").string() + " --out " +
+                                   out.string() + " --set integrator.type=velocity_verlet");
+  EXPECT_EQ(spread.exit_code, 0) << spread.output;
+  const auto line = spread.output.find(" particles, ");  // the run's line, from rank 0 only
+  EXPECT_NE(line, std::string::npos) << spread.output;
+  EXPECT_EQ(spread.output.find(" particles, ", line + 1), std::string::npos) << spread.output;
+  EXPECT_NE(test::slurp(out / "summary.json").find("\"ranks\": 2"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out / "particles_000000.pvtu"));
+  EXPECT_TRUE(std::filesystem::exists(out / "particles_000000_p1.vtu"));
 }
 
 // An integrator option the scene cannot use fails before the output folder is touched: exit 2,

@@ -58,7 +58,9 @@ TEST(RunLoop, EveryObserverRestoresEveryArrayItSaves) {
   State state{scene.particles.reference, scene.particles.velocity, checkpoint.number("run.time")};
   RunSummary summary;
   summary.dt = 1e-5;
-  const RunParts parts{config, scene, *model, dynamics, post_step, *integrator, state, summary};
+  const RunRanks ranks(scene, MPI_COMM_NULL);
+  const RunParts parts{config,      scene, *model,  dynamics, post_step,
+                       *integrator, state, summary, ranks};
   RunObservers observers = make_run_observers(scene, dynamics, [] { return NamedArrays{}; });
 
   std::vector<std::string> prefixes = {"config", "run.",      "state.",     "post_step.",

@@ -28,6 +28,7 @@ TEST(SummaryJson, ReadsBackWithAnyMessageAndNonFiniteNumbers) {
   for (const auto& item : j.items()) keys.push_back(item.key());
   const std::vector<std::string> documented = {"status",
                                                "particles",
+                                               "ranks",
                                                "bonds",
                                                "steps",
                                                "dt",

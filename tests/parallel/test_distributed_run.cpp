@@ -3,7 +3,7 @@
 // equal"): a slab with a pre-crack across the ranks' cuts, pulled apart at both ends under
 // gravity, stepped with the fracture search after every step; at every step each rank's rows
 // hold one rank's bits. The step loop is the run loop's (integrator step, then bond breaking);
-// the run loop itself is not distributed yet (docs/mpi.md).
+// the whole run loop over ranks is DistributedRunLoop's (test_distributed_run_loop.cpp).
 #include <gtest/gtest.h>
 #include <petscsys.h>
 

@@ -1,0 +1,117 @@
+#include "app/run_ranks.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "core/error.hpp"
+#include "integrators/petsc_session.hpp"
+#include "parallel/collective.hpp"
+#include "parallel/ownership.hpp"
+
+namespace fissure {
+
+namespace {
+
+int from_environment(const char* open_mpi, const char* mpich, int otherwise) {
+  for (const char* name : {open_mpi, mpich})
+    if (const char* value = std::getenv(name)) return std::max(0, std::atoi(value));
+  return otherwise;
+}
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw RunError(fmt::format("MPI: {} failed", what));
+}
+
+// Sends `text` from rank `from` to every rank of comm.
+void broadcast(MPI_Comm comm, std::string& text, int from) {
+  int length = static_cast<int>(text.size());
+  check(MPI_Bcast(&length, 1, MPI_INT, from, comm), "MPI_Bcast");
+  text.resize(length);
+  check(MPI_Bcast(text.data(), length, MPI_CHAR, from, comm), "MPI_Bcast");
+}
+
+}  // namespace
+
+int launched_ranks() {
+  return std::max(1, from_environment("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", 1));
+}
+
+int launched_rank() { return from_environment("OMPI_COMM_WORLD_RANK", "PMI_RANK", 0); }
+
+RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.count()) {
+  if (comm == MPI_COMM_NULL) {
+    if (launched_ranks() == 1) return;
+    ensure_petsc();
+    comm = PETSC_COMM_WORLD;
+  }
+  check(MPI_Comm_size(comm, &size_), "MPI_Comm_size");
+  check(MPI_Comm_rank(comm, &rank_), "MPI_Comm_rank");
+  if (size_ == 1) return;
+  comm_ = comm;
+  const std::vector<int>& offsets = scene.families.offsets;
+  std::vector<int> boundaries = split_rows_by_bonds(offsets, size_);
+  for (const int row : boundaries) bond_boundaries_.push_back(offsets[row]);
+  begin_ = boundaries[rank_];
+  end_ = boundaries[rank_ + 1];
+  for (int i = begin_; i < end_; ++i) rows_.push_back(i);
+  halo_ = std::make_unique<Halo>(comm, scene.families, std::move(boundaries));
+}
+
+void RunRanks::sum(std::vector<double>& values) const {
+  if (distributed()) sum_over_ranks(comm_, values);
+}
+
+double RunRanks::sum(double value) const {
+  std::vector<double> values = {value};
+  sum(values);
+  return values[0];
+}
+
+double RunRanks::max(double value) const {
+  return distributed() ? max_over_ranks(comm_, value) : value;
+}
+
+int RunRanks::min(int value) const { return distributed() ? min_over_ranks(comm_, value) : value; }
+
+std::vector<double> RunRanks::gather(const std::vector<double>& values, int width) const {
+  if (!distributed()) return values;
+  return gather_owned(comm_, halo_->boundaries(), values.data(), width);
+}
+
+std::vector<std::uint8_t> RunRanks::gather_bonds(const std::vector<std::uint8_t>& values) const {
+  // empty on every rank without fracture
+  if (!distributed() || values.empty()) return values;
+  return gather_owned(comm_, bond_boundaries_, values.data(), 1);
+}
+
+void RunRanks::agree(const std::function<void()>& work) const {
+  if (!distributed()) return work();
+  fissure::agree(comm_, work);
+}
+
+void RunRanks::write(const std::function<void()>& work) const {
+  if (!distributed()) return work();
+  std::string path, reason;
+  bool failed = true;
+  try {
+    work();
+    failed = false;
+  } catch (const OutputError& e) {
+    path = e.path();
+    reason = e.reason();
+  } catch (const std::exception& e) {
+    reason = e.what();
+  }
+  const int first = min_over_ranks(comm_, failed ? rank_ : INT_MAX);
+  if (first == INT_MAX) return;
+  broadcast(comm_, path, first);
+  broadcast(comm_, reason, first);
+  throw OutputError(path, first == 0 ? reason : fmt::format("{} (on rank {})", reason, first));
+}
+
+}  // namespace fissure
