@@ -2,6 +2,9 @@
 # Weak scaling of the distributed explicit step (issue 18; docs/mpi.md): bench_distributed_step
 # on 1 to 4 ranks with the same particles per rank, one OpenMP thread per rank. Ranks beyond
 # the machine's cores are oversubscribed, so their times show the sharing, not the scaling.
+# Then the same bar through the whole run loop, `mpirun fissure run bench/distributed_bar.yaml`
+# (its checks and energy ledger reduced over the ranks each step, frames at the start and end):
+# seconds per step and peak memory per rank from summary.json.
 #   bench/run_distributed_bench.sh [particles_per_rank=20000] [steps=50]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,4 +12,15 @@ export OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
 for ranks in 1 2 3 4; do
   echo "== $ranks ranks"
   mpirun -np "$ranks" --oversubscribe build/bench_distributed_step "${1:-20000}" "${2:-50}"
+done
+echo "== fissure run (the whole run loop), about 100 steps"
+for ranks in 1 2 3 4; do
+  length=$(awk -v p="${1:-20000}" -v r="$ranks" 'BEGIN { print p * r / 1.48e5 }')
+  out=$(mktemp -d)
+  mpirun -np "$ranks" --oversubscribe build/fissure run bench/distributed_bar.yaml --out "$out" \
+    --set "bodies.0.geometry.box.max=[$length, 0.1, 0.1]" >/dev/null
+  python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print('ranks', s['ranks'], \
+'particles', s['particles'], 'steps', s['steps'], 'seconds_per_step', \
+round(s['seconds_per_step'], 5), 'peak_rss_mb_per_rank', round(s['peak_rss_mb']))" "$out/summary.json"
+  rm -rf "$out"
 done

@@ -27,7 +27,10 @@ ProbesOutput::ProbesOutput(const Scene& scene, EnergyLedger& ledger)
     : ledger_(ledger),
       path_(scene.config.output.dir + "/probes.csv"),
       members_(probe_members(scene.config, scene.particles)),
-      schedule_(scene.config.output.probe_every, 0.0) {}
+      schedule_(scene.config.output.probe_every, 0.0) {
+  for (const auto& members : members_)
+    member_rows_.insert(member_rows_.end(), members.begin(), members.end());
+}
 
 void ProbesOutput::start(const RunParts& run) {
   run.ranks.write([&] {
@@ -68,10 +71,16 @@ void ProbesOutput::write_row(const RunParts& run) {
       std::max(max_speed_, ranks.max(max_speed(run.state.velocity, ranks.begin(), ranks.end())));
   std::vector<double> columns;
   for (const auto& [name, value] : ledger_.entries()) columns.push_back(value);
-  const std::vector<double> position = ranks.gather(run.state.position, 3);
+  std::vector<double> position;  // over several ranks, the members' on the root
+  if (ranks.distributed()) {
+    if (!members_to_root_) members_to_root_ = ranks.to_root(member_rows_);
+    position = run.state.position;
+    members_to_root_->fill(position.data(), 3);
+  }
   ranks.write([&] {
     if (ranks.root())
-      file_->write_row(run.state.time, ledger_.kinetic(), ledger_.elastic(), position, columns);
+      file_->write_row(run.state.time, ledger_.kinetic(), ledger_.elastic(),
+                       ranks.distributed() ? position : run.state.position, columns);
   });
   last_time_ = run.state.time;
 }

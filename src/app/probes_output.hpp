@@ -28,6 +28,9 @@ class ProbesOutput : public Observer {
   EnergyLedger& ledger_;
   std::string path_;
   std::vector<std::vector<int>> members_;  // until the file is opened
+  std::vector<int> member_rows_;           // every probe's members
+  // Over several ranks: the members' positions, brought to the root at each row.
+  std::unique_ptr<IndexExchange> members_to_root_;
   std::unique_ptr<ProbesCsv> file_;
   OutputSchedule schedule_;
   double last_time_ = -1;  // time of the last row

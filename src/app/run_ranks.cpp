@@ -62,6 +62,16 @@ RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.cou
   halo_ = std::make_unique<Halo>(comm, scene.families, std::move(boundaries));
 }
 
+std::unique_ptr<IndexExchange> RunRanks::to_root(const std::vector<int>& particles) const {
+  std::vector<int> needed;
+  if (root())
+    for (const int i : particles)
+      if (i < begin_ || i >= end_) needed.push_back(i);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  return std::make_unique<IndexExchange>(comm_, halo_->boundaries(), std::move(needed));
+}
+
 void RunRanks::sum(std::vector<double>& values) const {
   if (distributed()) sum_over_ranks(comm_, values);
 }

@@ -46,6 +46,9 @@ class RunRanks {
   // The owned rows of a per-particle array of `width` values per particle, whole on the root
   // (in place on one rank: the array itself); empty elsewhere. Collective.
   std::vector<double> gather(const std::vector<double>& values, int width) const;
+  // The exchange that brings `particles`' entries (of a per-particle array) to the root from
+  // the ranks that own them; the other ranks receive none. Collective.
+  std::unique_ptr<IndexExchange> to_root(const std::vector<int>& particles) const;
   // A per-bond array (CSR order), whole on the root; empty stays empty. Collective.
   std::vector<std::uint8_t> gather_bonds(const std::vector<std::uint8_t>& values) const;
   // Rank-local work that makes no collective call: an exception it raises on any rank is

@@ -107,8 +107,9 @@ void Simulation::distribute() {
   const std::string& type = config_.integrator.type;
   if (!integrator_->distributable())
     throw InputError(config_.file, "integrator.type",
-                     fmt::format("'{}' cannot run over several ranks yet ({} ranks were started); "
-                                 "velocity_verlet and symplectic_euler can (docs/mpi.md)",
+                     fmt::format("'{}' cannot run over several ranks yet with these options ({} "
+                                 "ranks were started); velocity_verlet, symplectic_euler and "
+                                 "arkode with an explicit integrator.method can (docs/mpi.md)",
                                  type, ranks_->size()));
   try {
     dynamics_->distribute(ranks_->halo());

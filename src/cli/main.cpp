@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
                                         : fissure::load_config(config_path, overrides);
     if (!out_dir.empty()) config.output.dir = out_dir;
     if (*info) {
-      fissure::print_info(config);
+      if (speaks()) fissure::print_info(config);
       return 0;
     }
     fissure::RunOptions options;
