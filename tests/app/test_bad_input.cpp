@@ -102,7 +102,7 @@ TEST(BadInput, MissingConfigFile) {
 }
 
 // `mpirun -np 2 fissure run`: an explicit integrator runs over both ranks (rank 0 speaks,
-// summary.json records the ranks, frames are .pvtu); an integrator that cannot be spread over
+// summary.json records the ranks, frames are .pvtu, which fissure render reads); an integrator that cannot be spread over
 // ranks yet is refused before the output folder is touched, with exit code 2, the key, and one
 // message, not one per rank; `fissure study` runs on one rank only (docs/mpi.md).
 TEST(BadInput, WhatCannotRunOnSeveralRanksIsRefusedBeforeAnythingIsWritten) {
@@ -138,6 +138,12 @@ TEST(BadInput, WhatCannotRunOnSeveralRanksIsRefusedBeforeAnythingIsWritten) {
   EXPECT_NE(test::slurp(out / "summary.json").find("\"ranks\": 2"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(out / "particles_000000.pvtu"));
   EXPECT_TRUE(std::filesystem::exists(out / "particles_000000_p1.vtu"));
+  // fissure render reads the .pvtu frames particles.pvd lists (the first and the last here)
+  const auto render = test::run_fissure("render " + out.string() +
+                                        " --set render.every=100 --set render.width=160 "
+                                        "--set render.height=120");
+  EXPECT_EQ(render.exit_code, 0) << render.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "render" / "frame_000000.png")) << render.output;
 }
 
 // An integrator option the scene cannot use fails before the output folder is touched: exit 2,
