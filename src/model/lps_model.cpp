@@ -273,10 +273,9 @@ void LpsModel::distribute(const Halo& halo) {
 
 // θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped), summed as compute_dilatation sums it.
 void LpsModel::dilatation(const double* y, double* theta) const {
-  const int n = particles_.count();
   const double* V = particles_.volume.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i)
+  for (int i = row_begin_; i < row_end_; ++i)
     theta[i] = kernels_.dilatation(bond_row(i), i, y, V, nullptr, nullptr).theta;
 }
 

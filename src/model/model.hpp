@@ -66,7 +66,8 @@ class Model {
   // changes only the broken bonds' rows. This one evaluates every W_i; a model whose W_i reads
   // only row i's bonds evaluates the listed rows alone.
   virtual double rows_energy(const double* y, const std::vector<int>& rows);
-  // Dilatation θ_i of each particle at positions y (N values), the one the forces at y use.
+  // Dilatation θ_i of each particle at positions y (N values), the one the forces at y use;
+  // over several ranks (distribute()) of this rank's rows only, the other values untouched.
   virtual void dilatation(const double* y, double* theta) const = 0;
   // Gershgorin bound on the stable explicit step at the reference state (notes §4).
   virtual double stable_time_step() const = 0;
@@ -105,9 +106,10 @@ class Model {
   // (halo.begin() to halo.end()): they read the positions of those rows and of the halo's
   // ghosts, write those rows of f, and forces_and_energy() returns this rank's share of Π;
   // whatever a row needs from a ghost's row comes through the halo (issue 18; docs/mpi.md).
-  // The halo must outlive the model. Other evaluations still evaluate every row, from whatever
-  // positions they are given, and break_bond() changes only the row it names. A model that
-  // cannot be distributed throws std::invalid_argument saying why.
+  // The halo must outlive the model. dilatation() evaluates the own rows too. Other evaluations
+  // still evaluate every row, from whatever positions they are given, and break_bond() changes
+  // only the row it names. A model that cannot be distributed throws std::invalid_argument
+  // saying why.
   virtual void distribute(const Halo& halo);
 
  protected:
