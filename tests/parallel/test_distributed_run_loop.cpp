@@ -36,7 +36,8 @@ constexpr double kEnd = 0.02;  // s: about 200 steps, the crack opens through th
 
 // The slab of DistributedRun, pulled apart across a pre-crack, through the run loop: frames every
 // kEnd/5, probes every frame, a checkpoint at 0.6 kEnd (the last one the run writes).
-Config pulled_slab(const std::string& dir, const std::string& integrator) {
+Config pulled_slab(const std::string& dir, const std::string& integrator,
+                   const std::vector<std::string>& overrides = {}) {
   const std::string yaml = fmt::format(
       "time: {{end: {}, dt: auto}}\n"
       "integrator: {}\n"
@@ -56,7 +57,7 @@ Config pulled_slab(const std::string& dir, const std::string& integrator) {
       "  - {{name: end, region: {{box: {{min: [0.27, -1, -1], max: [1, 1, 1]}}}}}}\n"
       "output: {{dir: {}, every: {}, probe_every: {}, checkpoint_every: {}}}\n",
       kEnd, integrator, dir, kEnd / 5, kEnd / 5, 0.6 * kEnd);
-  return parse_config(yaml, "pulled_slab.yaml");
+  return parse_config(yaml, "pulled_slab.yaml", overrides);
 }
 
 Config pulled_slab(const std::string& dir) { return pulled_slab(dir, "{type: velocity_verlet}"); }
@@ -290,6 +291,35 @@ TEST(DistributedRunLoop, ArkodeAdaptiveWithinItsTolerance) {
     const double own_error = largest_difference(frame(one, k), frame(tight, k));
     EXPECT_GT(own_error, 0) << k;
     EXPECT_LE(largest_difference(frame(one, k), frame(all, k)), own_error) << k;
+  }
+}
+
+// What cannot be spread over ranks yet is refused on every rank before the output folder exists,
+// with the key that asks for it (docs/mpi.md).
+TEST(DistributedRunLoop, WhatCannotRunOverRanksYetIsRefusedWithItsKey) {
+  if (test::ranks() == 1) GTEST_SKIP() << "one rank runs all of these";
+  const std::string dir = scratch("refused");
+  const std::pair<std::vector<std::string>, std::string> cases[] = {
+      {{"integrator.type=petsc_newton"}, "integrator.type: 'petsc_newton' cannot run over"},
+      {{"integrator.type=arkode", "integrator.method=SDIRK_2_1_2"},
+       "integrator.type: 'arkode' cannot run over"},
+      {{"contact.self=true"}, "contact.self cannot run over several ranks yet"},
+      {{"bodies.0.material.plasticity.yield_stress=1.0e5"},
+       "material.plasticity cannot be evaluated over several ranks yet"},
+      {{"output.surface=true"}, "output.surface and output.tets cannot be written over several"},
+      {{"bodies.0.material.model=paper"}, "material.model paper cannot be evaluated over several ranks yet"}};
+  for (const auto& [overrides, expected] : cases) {
+    SCOPED_TRACE(overrides.front());
+    std::string message;
+    try {
+      RunOptions options;
+      options.comm = PETSC_COMM_WORLD;
+      run_simulation(pulled_slab(dir, "{type: velocity_verlet}", overrides), options);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_FALSE(fs::exists(dir));
   }
 }
 
