@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -114,6 +115,9 @@ void RunRanks::write(const std::function<void()>& work) const {
   } catch (const OutputError& e) {
     path = e.path();
     reason = e.reason();
+  } catch (const std::filesystem::filesystem_error& e) {  // removing an earlier run's files
+    path = e.path1().string();
+    reason = e.code().message();
   } catch (const std::exception& e) {
     reason = e.what();
   }
