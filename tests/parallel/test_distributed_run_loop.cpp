@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -113,12 +112,11 @@ RunSummary run_on(
   return summary;
 }
 
-// A fresh folder, the same on every rank (rank 0's process id in its name).
+// A fresh folder, the same on every rank; one per number of ranks, as ctest runs them side by
+// side (the next run of the same ranks clears it).
 std::string scratch(const std::string& name) {
-  int process = getpid();
-  MPI_Bcast(&process, 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  const fs::path dir = fs::temp_directory_path() /
-                       fmt::format("fissure_parallel_{}_{}_{}", name, test::ranks(), process);
+  const fs::path dir =
+      fs::temp_directory_path() / fmt::format("fissure_parallel_{}_{}", name, test::ranks());
   if (test::rank() == 0) fs::remove_all(dir);
   MPI_Barrier(PETSC_COMM_WORLD);
   return dir.string();
