@@ -100,14 +100,8 @@ void BondBreaking::update_damage(int i) {
 }
 
 std::size_t BondBreaking::run(const double* y) {
-  const std::size_t pairs = find(y) > 0 ? apply() : 0;
-  if (!halo_) return pairs;
-  // whether any rank's rows changed decides collective work (an integrator's new forces): every
-  // rank must return the same; the directed bonds over all ranks count each pair twice
-  unsigned long directed = pairs > 0 ? removed_directed_ : 0, total = 0;
-  if (MPI_Allreduce(&directed, &total, 1, MPI_UNSIGNED_LONG, MPI_SUM, halo_->comm()) != MPI_SUCCESS)
-    throw std::runtime_error("MPI_Allreduce failed");
-  return total / 2;
+  find(y);
+  return apply();
 }
 
 // s^ω_ij = s^e/ω_ij with s^e = (e − e^p)/|ξ| (Eqs 18–19), against a threshold that grows with
@@ -285,8 +279,13 @@ std::size_t BondBreaking::apply() {
   for (const int b : shared_bonds_) exceeded_[families_.reverse[b]] = 0;
   exceeding_.clear();
   broken_pairs_ += removed / 2;
-  removed_directed_ = directed;
-  return removed / 2;
+  if (!halo_) return removed / 2;
+  // whether any rank's rows changed decides collective work (an integrator's new forces): every
+  // rank must return the same; the directed bonds over all ranks count each pair twice
+  unsigned long mine = directed, total = 0;
+  if (MPI_Allreduce(&mine, &total, 1, MPI_UNSIGNED_LONG, MPI_SUM, halo_->comm()) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Allreduce failed");
+  return total / 2;
 }
 
 void BondBreaking::restore(const std::vector<std::uint8_t>& broken) {

@@ -33,7 +33,8 @@ class BondBreaking {
   std::size_t run(const double* y);
   // run() in two halves: find() marks the bonds whose criterion is exceeded and returns how many
   // (directed; over several ranks also the own bonds whose partner in another rank's row was
-  // exceeded there); apply() breaks them and returns how many pairs broke.
+  // exceeded there); apply() breaks them and returns how many pairs broke, over several ranks
+  // the pairs broken on all ranks (collective: every rank calls it, whatever its find() found).
   std::size_t find(const double* y);
   std::size_t apply();
   // After find(), until the next: the rows apply() changes (those of the exceeded bonds and of
@@ -87,7 +88,6 @@ class BondBreaking {
   std::vector<int> exceeding_;  // rows with an exceeded bond, from find() to apply()
   std::vector<int> changing_;   // rows_to_change()
   std::size_t broken_pairs_ = 0;
-  std::size_t removed_directed_ = 0;  // directed bonds the last apply() broke
   // The rows this rank tests and changes: all, or its own (distribute()) with the ghosts whose
   // drift bounds its bonds' changes, the exchange of the criterion's flags of the bonds in the
   // ghosts' rows that pair with its own, and those own bonds.

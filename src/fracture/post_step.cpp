@@ -25,22 +25,21 @@ bool PostStep::run(const double* y, const double* velocity, double dt) {
       released_.plastic += stored - model_.elastic_energy(y);
   }
   bool changed = false;
-  double released = 0;
-  if (bond_breaking_ && bond_breaking_->find(y) > 0) {
+  if (bond_breaking_) {
     // breaking changes only the energy of the broken bonds' rows
+    const bool found = bond_breaking_->find(y) > 0;
     const std::vector<int>& rows = bond_breaking_->rows_to_change();
-    const double before = measure_energy_ ? model_.rows_energy(y, rows) : 0;
-    changed = bond_breaking_->apply() > 0;
-    if (measure_energy_) released = before - model_.rows_energy(y, rows);
+    const bool measure = measure_energy_ && found;
+    const double before = measure ? model_.rows_energy(y, rows) : 0;
+    changed = bond_breaking_->apply() > 0;  // over all ranks (BondBreaking::distribute)
+    double released = measure ? before - model_.rows_energy(y, rows) : 0;
+    if (halo_ && changed && measure_energy_) {
+      std::vector<double> total = {released};
+      sum_over_ranks(halo_->comm(), total);
+      released = total[0];
+    }
+    released_.fracture += released;
   }
-  if (bond_breaking_ && halo_) {
-    // whether any rank's bonds broke decides collective work (the integrator's new forces)
-    std::vector<double> totals = {changed ? 1.0 : 0.0, released};
-    sum_over_ranks(halo_->comm(), totals);
-    changed = totals[0] > 0;
-    released = totals[1];
-  }
-  released_.fracture += released;
   if (embedded_mesh_) {
     if (changed) embedded_mesh_->crack(bond_breaking_->broken(), bond_breaking_->changed());
     if (velocity) embedded_mesh_->advance(velocity, dt);
