@@ -105,12 +105,16 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
 
 void Simulation::distribute() {
   const std::string& type = config_.integrator.type;
-  if (!integrator_->distributable())
-    throw InputError(config_.file, "integrator.type",
+  if (!integrator_->distributable()) {
+    const std::string option = integrator_->undistributable_option();
+    throw InputError(config_.file, option.empty() ? "integrator.type" : option,
                      fmt::format("'{}' cannot run over several ranks yet with these options ({} "
-                                 "ranks were started); velocity_verlet, symplectic_euler and "
-                                 "arkode with an explicit integrator.method can (docs/mpi.md)",
+                                 "ranks were started); velocity_verlet, symplectic_euler, "
+                                 "arkode with an explicit integrator.method and petsc_newton "
+                                 "with integrator.preconditioner auto, majoriser, nearest or "
+                                 "gamg can (docs/mpi.md)",
                                  type, ranks_->size()));
+  }
   try {
     dynamics_->distribute(ranks_->halo());
     post_step_->distribute(ranks_->halo());

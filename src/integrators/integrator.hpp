@@ -42,6 +42,8 @@ class Integrator {
   // (a whole initial or resumed state is) it leaves them current (Dynamics::share) before each
   // acceleration and at the step's end, for the post-step and the next step.
   virtual bool distributable() const { return false; }
+  // When it is not, the key of the option that keeps it from it, or empty for the type itself.
+  virtual std::string undistributable_option() const { return {}; }
   virtual Statistics statistics() const { return {}; }
   // For checkpoints: what the integrator carries from one step to the next (a cached
   // acceleration), and its restoration. Its counters (statistics()) are not kept.

@@ -13,6 +13,7 @@
 #include "linear/nearest_bonds.hpp"
 #include "linear/shifted_system.hpp"
 #include "model/stiffness.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -39,6 +40,21 @@ constexpr PetscReal kGamgThreshold = 0.02;
 
 }  // namespace
 
+bool NewtonPreconditioner::distributable(Kind kind, NewtonSystem::Tangent tangent) {
+  switch (kind) {
+    case Kind::majoriser:
+    case Kind::nearest:
+    case Kind::gamg:
+    case Kind::automatic:
+      return true;
+    case Kind::tangent:  // the two-hop tangent, unless the tangent is the majoriser
+      return tangent == NewtonSystem::Tangent::majoriser;
+    case Kind::scalar:  // its N×N matrix is applied per component: not written for ranks yet
+      return false;
+  }
+  return false;
+}
+
 const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
   using P = PetscNewtonSettings::Preconditioner;
   switch (kind) {
@@ -58,7 +74,8 @@ const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
   return "auto";
 }
 
-PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families) {
+PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families,
+                                                         bool distributed) {
   // Measured on the glass cantilever (docs/accuracy.md, bench_implicit_step, backward Euler at
   // 300× the explicit estimate): the two-hop factor is fastest per step while it fits (7,948
   // particles: 0.069 s per later step, 1.77 GB) but grows far faster than the scene. At 26,973
@@ -70,13 +87,21 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   // particles (nearest's factor: 34 / 30 / 73), 1.9 GB at 95,187.
   const std::size_t particles = families.offsets.size() - 1;
   using P = PetscNewtonSettings::Preconditioner;
-  return particles <= 10000 ? P::tangent : P::gamg;
+  // Over several ranks the two-hop rows reach beyond the halo: the one-hop majoriser, factored
+  // by MUMPS, takes the tangent's place.
+  if (particles <= 10000) return distributed ? P::majoriser : P::tangent;
+  return P::gamg;
 }
 
 NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
                                            FactorPrecision precision)
     : system_(system), kind_(kind), options_(options) {
   const Families& families = system.dynamics().model().families();
+  const bool distributed = system.distributed();
+  if (distributed && !distributable(kind, system.tangent()))
+    throw RunError(fmt::format("the {} preconditioner cannot run over several ranks",
+                               preconditioner_name(kind)));
+  MPI_Comm comm = distributed ? system.dynamics().halo()->comm() : PETSC_COMM_SELF;
   switch (kind) {
     case Kind::tangent:
       matrix_ = system.tangent() == NewtonSystem::Tangent::majoriser ? bond_pattern(families)
@@ -99,7 +124,7 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
   }
   diagonal_ = diagonal_positions(matrix_);
   if (kind == Kind::scalar) component_in_.resize(matrix_.rows), component_out_.resize(matrix_.rows);
-  petsc_check(PCCreate(PETSC_COMM_SELF, &pc_), "PCCreate");
+  petsc_check(PCCreate(comm, &pc_), "PCCreate");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc_), options_), "options");
   petsc_check(PCSetOptionsPrefix(pc_, "precond_"), "PCSetOptionsPrefix");
   if (kind == Kind::gamg) {
@@ -110,8 +135,10 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
     petsc_check(PCGAMGSetThreshold(pc_, const_cast<PetscReal*>(threshold), 1),
                 "PCGAMGSetThreshold");
   } else {
+    // over several ranks MUMPS's parallel Cholesky factors the same matrix as CHOLMOD on one
     petsc_check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
-    petsc_check(PCFactorSetMatSolverType(pc_, MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
+    petsc_check(PCFactorSetMatSolverType(pc_, distributed ? MATSOLVERMUMPS : MATSOLVERCHOLMOD),
+                "PCFactorSetMatSolverType");
   }
   petsc_check(PCSetFromOptions(pc_), "PCSetFromOptions");
   PCType type;
@@ -119,7 +146,7 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
   MatSolverType solver = nullptr;
   if (std::strcmp(type, PCCHOLESKY) == 0)
     petsc_check(PCFactorGetMatSolverType(pc_, &solver), "PCFactorGetMatSolverType");
-  if (solver && std::strcmp(solver, MATSOLVERCHOLMOD) == 0) {
+  if (!distributed && solver && std::strcmp(solver, MATSOLVERCHOLMOD) == 0) {
     // PETSc's own CHOLMOD Cholesky, as by default: made and solved here instead.
     cholesky_ = std::make_unique<SupernodalCholesky>(precision);
     return;
@@ -144,6 +171,10 @@ NewtonPreconditioner::~NewtonPreconditioner() {
 }
 
 void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int block_size) {
+  if (system_.distributed()) {
+    create_distributed_matrix(a);
+    return;
+  }
   petsc_check(MatCreate(PETSC_COMM_SELF, &petsc_matrix_), "MatCreate");
   petsc_check(MatSetSizes(petsc_matrix_, a.rows, a.rows, a.rows, a.rows), "MatSetSizes");
   petsc_check(MatSetType(petsc_matrix_, MATSEQAIJ), "MatSetType");
@@ -155,6 +186,47 @@ void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int blo
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOption(petsc_matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE),
               "MatSetOption");
+}
+
+// This rank's rows of `a` (3N×3N, block size 3) in a MATMPIAIJ whose rows are distributed as
+// the unknowns, its columns in the global numbering.
+void NewtonPreconditioner::create_distributed_matrix(const SparseSymmetric& a) {
+  const int first = static_cast<int>(system_.first_unknown());
+  const int rows = static_cast<int>(system_.end_unknown()) - first;
+  std::vector<PetscInt> offsets(rows + 1);
+  for (int r = 0; r <= rows; ++r) offsets[r] = a.offsets[first + r] - a.offsets[first];
+  const PetscInt* columns = a.columns.data() + a.offsets[first];
+  const PetscScalar* values = a.values.data() + a.offsets[first];
+  petsc_check(MatCreate(system_.dynamics().halo()->comm(), &petsc_matrix_), "MatCreate");
+  petsc_check(MatSetSizes(petsc_matrix_, rows, rows, a.rows, a.rows), "MatSetSizes");
+  petsc_check(MatSetType(petsc_matrix_, MATMPIAIJ), "MatSetType");
+  petsc_check(MatSetBlockSize(petsc_matrix_, 3), "MatSetBlockSize");
+  petsc_check(MatMPIAIJSetPreallocationCSR(petsc_matrix_, offsets.data(), columns, values),
+              "MatMPIAIJSetPreallocationCSR");
+  petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+  petsc_check(MatSetOption(petsc_matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE),
+              "MatSetOption");
+}
+
+// The own rows of matrix_ into the PETSc matrix, in place.
+void NewtonPreconditioner::copy_values() {
+  if (!system_.distributed()) {
+    PetscScalar* values;
+    petsc_check(MatSeqAIJGetArray(petsc_matrix_, &values), "MatSeqAIJGetArray");
+    std::memcpy(values, matrix_.values.data(), matrix_.values.size() * sizeof(double));
+    petsc_check(MatSeqAIJRestoreArray(petsc_matrix_, &values), "MatSeqAIJRestoreArray");
+    return;
+  }
+  for (PetscInt r = system_.first_unknown(); r < PetscInt(system_.end_unknown()); ++r) {
+    const int begin = matrix_.offsets[r];
+    petsc_check(MatSetValues(petsc_matrix_, 1, &r, matrix_.offsets[r + 1] - begin,
+                             matrix_.columns.data() + begin, matrix_.values.data() + begin,
+                             INSERT_VALUES),
+                "MatSetValues");
+  }
+  petsc_check(MatAssemblyBegin(petsc_matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(petsc_matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
 void NewtonPreconditioner::refresh(const double* z) {
@@ -195,19 +267,20 @@ void NewtonPreconditioner::refresh(const double* z) {
     ++factorizations;
     return;
   }
-  PetscScalar* values;
-  petsc_check(MatSeqAIJGetArray(petsc_matrix_, &values), "MatSeqAIJGetArray");
-  std::memcpy(values, matrix_.values.data(), matrix_.values.size() * sizeof(double));
-  petsc_check(MatSeqAIJRestoreArray(petsc_matrix_, &values), "MatSeqAIJRestoreArray");
+  copy_values();
   PCType type;
   petsc_check(PCGetType(pc_, &type), "PCGetType");
   if (std::strcmp(type, PCGAMG) == 0 && kind_ != Kind::scalar) {
+    MPI_Comm comm;
     // The rigid-body modes at z: what the stiffness (nearly) does not resist (also when a
     // user's -precond_pc_type gamg picks multigrid for another kind's matrix).
     Vec coordinates;
     MatNullSpace modes;
-    const PetscInt n = matrix_.rows;
-    petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, z, &coordinates), "VecCreateSeq");
+    const PetscInt first = system_.first_unknown(), n = system_.end_unknown() - first;
+    petsc_check(PetscObjectGetComm(reinterpret_cast<PetscObject>(petsc_matrix_), &comm),
+                "PetscObjectGetComm");
+    petsc_check(VecCreateMPIWithArray(comm, 3, n, PETSC_DETERMINE, z + first, &coordinates),
+                "VecCreateMPIWithArray");
     petsc_check(MatNullSpaceCreateRigidBody(coordinates, &modes), "MatNullSpaceCreateRigidBody");
     petsc_check(MatSetNearNullSpace(petsc_matrix_, modes), "MatSetNearNullSpace");
     petsc_check(MatNullSpaceDestroy(&modes), "MatNullSpaceDestroy");

@@ -51,9 +51,14 @@ class NewtonPreconditioner {
   // bonds only, so a refresh for slow convergence would rebuild the same factor.
   bool follows_the_state() const { return kind_ != Kind::scalar; }
   long assemblies = 0, factorizations = 0, back_solves = 0;
+  // Whether a preconditioner of this kind runs over several ranks: there its matrix's own rows
+  // form a MATMPIAIJ, factored by MUMPS's Cholesky (or set up by PETSc's GAMG).
+  static bool distributable(Kind kind, NewtonSystem::Tangent tangent);
 
  private:
   void create_petsc_matrix(const SparseSymmetric& a, int block_size);
+  void create_distributed_matrix(const SparseSymmetric& a);
+  void copy_values();
   RunError not_positive_definite() const;
 
   NewtonSystem& system_;
@@ -72,8 +77,10 @@ class NewtonPreconditioner {
   Vec component_ = nullptr, component_solution_ = nullptr;
 };
 
-// The preconditioner `auto` picks for a scene of these families (docs/integrators.md).
-PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families);
+// The preconditioner `auto` picks for a scene of these families (docs/integrators.md), on one
+// rank or over several.
+PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families,
+                                                         bool distributed = false);
 const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind);
 
 }  // namespace fissure

@@ -4,6 +4,8 @@
 #include <cstring>
 
 #include "model/stiffness.hpp"
+#include "parallel/collective.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -13,6 +15,8 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
   mass_.resize(3 * m.size());
   for (std::size_t i = 0; i < m.size(); ++i)
     for (int d = 0; d < 3; ++d) mass_[3 * i + d] = m[i];
+  first_ = 3 * std::size_t(dynamics.first_row());
+  end_ = 3 * std::size_t(dynamics.end_row());
   force_.resize(mass_.size());
   external_.resize(mass_.size());
   masked_.resize(mass_.size());
@@ -42,14 +46,26 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
       z[u] = stay[u] = scheme.held_value(state.position[u], velocity[k][d], h);
     }
   linearized_ = false;
+  dynamics_.share(z.data());  // the guess's ghosts from their own ranks' velocities
   if (scheme.later_stage()) return z;
   return objective(stay.data()) < objective(z.data()) ? stay : z;
+}
+
+double NewtonSystem::sum_over_ranks(double value) const {
+  if (!distributed()) return value;
+  std::vector<double> values = {value};
+  fissure::sum_over_ranks(dynamics_.halo()->comm(), values);
+  return values[0];
 }
 
 void NewtonSystem::evaluate(const double* z, long& passes) {
   const std::size_t n = mass_.size();
   const std::size_t revision = dynamics_.model().revision();
-  if (cached_ && revision == revision_ && std::memcmp(z, point_.data(), n * sizeof(double)) == 0) {
+  int same = cached_ && revision == revision_ &&
+             std::memcmp(z + first_, point_.data() + first_, (end_ - first_) * sizeof(double)) == 0;
+  // the model's evaluation is collective: every rank evaluates when one rank's point changed
+  if (distributed()) same = min_over_ranks(dynamics_.halo()->comm(), same);
+  if (same) {
     ++cache_hits;
     return;
   }
@@ -65,24 +81,28 @@ void NewtonSystem::evaluate(const double* z, long& passes) {
 double NewtonSystem::objective(const double* z) {
   evaluate(z, objective_passes);
   double kinetic = 0, work = 0;
-  const std::size_t n = mass_.size();
 #pragma omp parallel for reduction(+ : kinetic, work) schedule(static)
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = first_; k < end_; ++k) {
     if (fixed_[k]) continue;
     const double d = z[k] - target_[k];
     kinetic += mass_[k] * d * d;
     work += external_[k] * d;  // fᵀ(z − ỹ): fᵀz up to a constant, without its cancellation
   }
-  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic_) + std::abs(work);
-  return 0.5 * inertia_ * kinetic + elastic_ - work;
+  double elastic = elastic_;  // this rank's rows' share over several ranks
+  if (distributed()) {
+    std::vector<double> parts = {kinetic, work, elastic};
+    fissure::sum_over_ranks(dynamics_.halo()->comm(), parts);
+    kinetic = parts[0], work = parts[1], elastic = parts[2];
+  }
+  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic) + std::abs(work);
+  return 0.5 * inertia_ * kinetic + elastic - work;
 }
 
 // ∇E = A M (z − ỹ) − F_int(z) − f
 void NewtonSystem::residual(const double* z, double* r) {
   evaluate(z, residual_passes);
-  const std::size_t n = mass_.size();
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k)
+  for (std::size_t k = first_; k < end_; ++k)
     r[k] = fixed_[k] ? 0.0 : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] - external_[k];
 }
 
@@ -109,15 +129,15 @@ void NewtonSystem::apply(const double* v, double* out) {
     linearized_tangent_ = tangent_;
     ++linearizations;
   }
-  const std::size_t n = mass_.size();
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k) masked_[k] = fixed_[k] ? 0.0 : v[k];
+  for (std::size_t k = first_; k < end_; ++k) masked_[k] = fixed_[k] ? 0.0 : v[k];
+  dynamics_.share(masked_.data());
   if (tangent_ == Tangent::majoriser)
     majoriser_.multiply(masked_.data(), out);
   else
     stiffness.apply_tangent(masked_.data(), out);
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k)
+  for (std::size_t k = first_; k < end_; ++k)
     out[k] = fixed_[k] ? (inertia_ > 0 ? inertia_ * mass_[k] : 1.0) * v[k]
                        : out[k] + inertia_ * mass_[k] * v[k];
   ++tangent_products;

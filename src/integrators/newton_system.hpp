@@ -45,6 +45,17 @@ class NewtonSystem {
   double inertia() const { return inertia_; }
   Dynamics& dynamics() { return dynamics_; }
 
+  // Over several ranks (Dynamics::distribute) the system's arrays stay 3N in the global
+  // numbering, but it reads and writes only this rank's unknowns [first_unknown(),
+  // end_unknown()), and the points it is given must have current ghosts (Dynamics::share);
+  // objective(), residual(), apply() and begin_step() are then collective, and objective()
+  // returns the whole system's E. On one rank: all unknowns.
+  std::size_t first_unknown() const { return first_; }
+  std::size_t end_unknown() const { return end_; }
+  bool distributed() const { return dynamics_.halo() != nullptr; }
+  // Σ over the ranks of `value` (in rank order: the same bits on every rank); value on one rank.
+  double sum_over_ranks(double value) const;
+
   // The size of the terms of the last objective() value: changes of E below about 1e-13 of it
   // are round-off, which no line search can resolve.
   double objective_magnitude() const { return magnitude_; }
@@ -63,6 +74,7 @@ class NewtonSystem {
 
   Dynamics& dynamics_;
   Tangent tangent_;
+  std::size_t first_ = 0, end_ = 0;  // this rank's unknowns
   std::vector<char> fixed_;       // per unknown: held by a constraint
   std::vector<double> mass_;      // per unknown
   std::vector<double> external_;  // f

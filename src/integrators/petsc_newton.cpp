@@ -18,6 +18,7 @@
 #include "integrators/newton_system.hpp"
 #include "integrators/petsc_session.hpp"
 #include "integrators/refresh_reasons.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -37,6 +38,11 @@ struct PetscNewton::Solver {
 
   NewtonSystem system;
   ImplicitScheme scheme;
+  // PETSc's vectors hold this rank's unknowns, the system's arrays all 3N (newton_system.hpp):
+  // over several ranks the callbacks copy between them (scratch 3N each); on one rank they are
+  // the same arrays.
+  MPI_Comm comm = PETSC_COMM_SELF;
+  std::vector<double> full_point, full_in, full_out;
   std::unique_ptr<NewtonPreconditioner> preconditioner;
   std::vector<double> acceleration;  // a_n
   bool have_acceleration = false;
@@ -94,6 +100,30 @@ PetscErrorCode guarded(Solver* s, F&& body) {
   }
 }
 
+// The 3N array the system reads for this rank's unknowns `local`: on one rank local itself;
+// over several ranks `full` with local at the own range and, for a point (share), the ghosts'
+// values from their ranks. Collective with share.
+const double* to_full(Solver& s, const double* local, std::vector<double>& full,
+                      bool share) {
+  if (!s.system.distributed()) return local;
+  const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
+  full.resize(s.system.mass().size());
+  std::copy(local, local + (end - first), full.begin() + first);
+  if (share) s.system.dynamics().share(full.data());
+  return full.data();
+}
+
+// Where the system writes a 3N result for `local`, and the copy back to it.
+double* full_result(Solver& s, double* local) {
+  if (!s.system.distributed()) return local;
+  s.full_out.resize(s.system.mass().size());
+  return s.full_out.data();
+}
+void from_full(const Solver& s, const double* full, double* local) {
+  if (full == local) return;
+  std::copy(full + s.system.first_unknown(), full + s.system.end_unknown(), local);
+}
+
 PetscErrorCode form_residual(SNES, Vec x, Vec r, void* context) {
   auto* s = static_cast<Solver*>(context);
   return guarded(s, [&] {
@@ -101,7 +131,9 @@ PetscErrorCode form_residual(SNES, Vec x, Vec r, void* context) {
     PetscScalar* out;
     petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
     petsc_check(VecGetArray(r, &out), "VecGetArray");
-    s->system.residual(z, out);
+    double* result = full_result(*s, out);
+    s->system.residual(to_full(*s, z, s->full_point, true), result);
+    from_full(*s, result, out);
     petsc_check(VecRestoreArray(r, &out), "VecRestoreArray");
     petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
   });
@@ -112,7 +144,7 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
   return guarded(s, [&] {
     const PetscScalar* z;
     petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
-    *value = s->system.objective(z);
+    *value = s->system.objective(to_full(*s, z, s->full_point, true));
     petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
   });
 }
@@ -160,8 +192,9 @@ void set_linear_tolerance(Solver& s) {
 PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
   auto* s = static_cast<Solver*>(context);
   return guarded(s, [&] {
-    const PetscScalar* z;
-    petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
+    const PetscScalar* local;
+    petsc_check(VecGetArrayRead(x, &local), "VecGetArrayRead");
+    const double* z = to_full(*s, local, s->full_point, true);
     s->system.linearize(z);
     const Solver::Refresh reason = refresh_reason(*s);
     if (reason != Refreshes::none) {
@@ -177,12 +210,12 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
         // redone (auto tangent: with the projected tangent) or halved.
         s->pending = Refreshes::fallback;
         s->factor_failed = true;
-        petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+        petsc_check(VecRestoreArrayRead(x, &local), "VecRestoreArrayRead");
         throw;
       }
     }
     ++s->iterations_since_refresh;
-    petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
+    petsc_check(VecRestoreArrayRead(x, &local), "VecRestoreArrayRead");
     if (s->krylov) set_linear_tolerance(*s);
   });
 }
@@ -196,7 +229,9 @@ PetscErrorCode apply_newton_matrix(Mat matrix, Vec v, Vec out) {
     PetscScalar* result;
     petsc_check(VecGetArrayRead(v, &in), "VecGetArrayRead");
     petsc_check(VecGetArray(out, &result), "VecGetArray");
-    s->system.apply(in, result);
+    double* full = full_result(*s, result);
+    s->system.apply(to_full(*s, in, s->full_in, false), full);  // apply() shares v's ghosts
+    from_full(*s, full, result);
     petsc_check(VecRestoreArray(out, &result), "VecRestoreArray");
     petsc_check(VecRestoreArrayRead(v, &in), "VecRestoreArrayRead");
   });
@@ -256,7 +291,7 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   using K = PetscNewtonSettings::Krylov;
   const Families& families = s.system.dynamics().model().families();
   P kind = settings.preconditioner;
-  if (kind == P::automatic) kind = choose_preconditioner(families);
+  if (kind == P::automatic) kind = choose_preconditioner(families, s.system.distributed());
   if (kind == P::tangent && s.system.tangent() == NewtonSystem::Tangent::majoriser)
     kind = P::majoriser;
   s.preconditioner =
@@ -269,16 +304,19 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   s.refresh_iterations = settings.refresh_iterations;
   s.refresh_krylov = settings.refresh_krylov;
 
-  const PetscInt n = static_cast<PetscInt>(s.system.mass().size());
-  petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &s, &s.matrix), "MatCreateShell");
+  // over several ranks: this rank's unknowns, on the halo's communicator
+  const PetscInt n = static_cast<PetscInt>(s.system.end_unknown() - s.system.first_unknown());
+  if (const Halo* halo = s.system.dynamics().halo()) s.comm = halo->comm();
+  petsc_check(MatCreateShell(s.comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, &s, &s.matrix),
+              "MatCreateShell");
   petsc_check(MatShellSetOperation(s.matrix, MATOP_MULT,
                                    reinterpret_cast<void (*)(void)>(apply_newton_matrix)),
               "MatShellSetOperation");
   petsc_check(MatSetOption(s.matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-  petsc_check(VecCreateSeq(PETSC_COMM_SELF, n, &s.unknowns), "VecCreateSeq");
+  petsc_check(VecCreateMPI(s.comm, n, PETSC_DETERMINE, &s.unknowns), "VecCreateMPI");
   petsc_check(VecDuplicate(s.unknowns, &s.residual), "VecDuplicate");
 
-  petsc_check(SNESCreate(PETSC_COMM_SELF, &s.snes), "SNESCreate");
+  petsc_check(SNESCreate(s.comm, &s.snes), "SNESCreate");
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(s.snes), s.options), "options");
   petsc_check(SNESSetType(s.snes, SNESNEWTONLS), "SNESSetType");
   petsc_check(SNESSetFunction(s.snes, s.residual, form_residual, &s), "SNESSetFunction");
@@ -358,18 +396,20 @@ double residual_floor(const Solver& s, const std::vector<double>& z) {
   const auto& m = s.system.mass();
   const auto& fixed = s.system.fixed();
   double sum = 0;
-  for (std::size_t k = 0; k < z.size(); ++k)
+  for (std::size_t k = s.system.first_unknown(); k < s.system.end_unknown(); ++k)
     if (!fixed[k]) sum += (m[k] * z[k]) * (m[k] * z[k]);
-  return std::numeric_limits<double>::epsilon() * scale * std::sqrt(sum);
+  return std::numeric_limits<double>::epsilon() * scale * std::sqrt(s.system.sum_over_ranks(sum));
 }
 
 // Options the user gave that PETSc never read are most likely typos.
 void warn_unused_options(Solver& s, const std::string& file) {
+  int rank = 0;
+  petsc_check(MPI_Comm_rank(s.comm, &rank), "MPI_Comm_rank");
   PetscInt count = 0;
   char** names = nullptr;
   char** values = nullptr;
   petsc_check(PetscOptionsLeftGet(s.options, &count, &names, &values), "PetscOptionsLeftGet");
-  for (PetscInt k = 0; k < count; ++k)
+  for (PetscInt k = 0; k < count && rank == 0; ++k)
     fmt::print(stderr, "warning: {}: integrator.petsc_options: PETSc did not use -{}\n", file,
                names[k]);
   petsc_check(PetscOptionsLeftRestore(s.options, &count, &names, &values),
@@ -413,6 +453,10 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
   return dt;
 }
 
+bool PetscNewton::distributable() const {
+  return NewtonPreconditioner::distributable(settings_.preconditioner, settings_.tangent);
+}
+
 void PetscNewton::bonds_changed() {
   if (!solver_) return;
   solver_->preconditioner->bonds_changed();
@@ -451,6 +495,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   const double load =
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;
   std::vector<double> z;
+  const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
   // One Newton solve from z with the given tangent; false if PETSc failed (e.g. the tangent
   // was not positive definite) or Newton did not converge.
   PetscInt iterations = 0;
@@ -460,7 +505,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     s.system.use_tangent(tangent);
     PetscScalar* x;
     petsc_check(VecGetArray(s.unknowns, &x), "VecGetArray");
-    std::copy(z.begin(), z.end(), x);
+    std::copy(z.begin() + first, z.begin() + end, x);
     petsc_check(VecRestoreArray(s.unknowns, &x), "VecRestoreArray");
     const PetscErrorCode code = SNESSolve(s.snes, nullptr, s.unknowns);
     if (s.error) {
@@ -531,11 +576,13 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     }
     const PetscScalar* solution;
     petsc_check(VecGetArrayRead(s.unknowns, &solution), "VecGetArrayRead");
-    std::copy(solution, solution + z.size(), z.begin());
+    std::copy(solution, solution + (end - first), z.begin() + first);
     petsc_check(VecRestoreArrayRead(s.unknowns, &solution), "VecRestoreArrayRead");
+    dynamics.share(z.data());
     s.scheme.finish_stage(z, dt);
   }
   s.scheme.correct(z, state, s.acceleration, dt);
+  dynamics.share(state.position.data());  // for the post-step and the next step
   dynamics.set_constraint_reactions(s.system.reactions());
   state.time += dt;
   dynamics.constrain_velocity(state.time, state.velocity.data());
@@ -584,7 +631,7 @@ std::string PetscNewton::solver_view() const {
   const fs::path path = fs::temp_directory_path() /
                         fmt::format("fissure_kspview_{}.txt", static_cast<const void*>(this));
   PetscViewer viewer;
-  petsc_check(PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer), "PetscViewerASCIIOpen");
+  petsc_check(PetscViewerASCIIOpen(solver_->comm, path.c_str(), &viewer), "PetscViewerASCIIOpen");
   petsc_check(KSPView(solver_->ksp, viewer), "KSPView");
   petsc_check(PetscViewerDestroy(&viewer), "PetscViewerDestroy");
   std::ifstream in(path);

@@ -20,6 +20,10 @@ class PetscNewton final : public Integrator {
   void check(const Dynamics& dynamics) const override;
   double step(Dynamics& dynamics, State& state, double dt) override;
   void bonds_changed() override;
+  // Over several ranks with every preconditioner but the two-hop tangent and the scalar one
+  // (docs/mpi.md).
+  bool distributable() const override;
+  std::string undistributable_option() const override { return "integrator.preconditioner"; }
   Statistics statistics() const override;
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;

@@ -279,11 +279,13 @@ void LpsModel::dilatation(const double* y, double* theta) const {
     theta[i] = kernels_.dilatation(bond_row(i), i, y, V, nullptr, nullptr).theta;
 }
 
+// Over several ranks: the own rows, and the ghosts' terms from their ranks (as forces()).
 void LpsModel::update_dilatation(const double* y) {
   if (plastic_)
-    compute_dilatation<true>(y, 0, particles_.count());
+    compute_dilatation<true>(y, row_begin_, row_end_);
   else
-    compute_dilatation<false>(y, 0, particles_.count());
+    compute_dilatation<false>(y, row_begin_, row_end_);
+  if (halo_) halo_->fill(reinterpret_cast<double*>(terms_.data()), 4);
 }
 
 // W_i = ½κθ_i² + ½B_i Σ_j w_ij ê_ij² V_j with ê_ij = e_ij − e^p_ij − (θ_i − θ^p_i)|ξ|/3
@@ -308,9 +310,8 @@ double LpsModel::row_energy(const double* y, int i, double theta) const {
 
 void LpsModel::energy_density(const double* y, double* w) {
   update_dilatation(y);
-  const int n = particles_.count();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) w[i] = row_energy(y, i, dilatation_[i]);
+  for (int i = row_begin_; i < row_end_; ++i) w[i] = row_energy(y, i, dilatation_[i]);
 }
 
 // The listed rows' θ_i from the dilatation pass alone (the bits compute_dilatation gives them).

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "linear/sparse_symmetric.hpp"
@@ -201,8 +202,9 @@ void LpsModel::assemble_bond_blocks(const double* y, const std::vector<char>* ke
     scale[i] = near > 0 ? family / near : 1.0;
   }
   std::fill(K.values.begin(), K.values.end(), 0.0);
+  // over several ranks the own rows only (their members' terms are the halo's)
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     // Row i: the kept members in increasing order, i's own block among them.
     int self = 0;
     for (int b = off[i]; b < off[i + 1] && nbr[b] < i; ++b) self += is_kept(b);
@@ -225,6 +227,8 @@ void LpsModel::assemble_bond_blocks(const double* y, const std::vector<char>* ke
 // from the families that contain it, so no two threads write to the same row. With
 // clamp_compression the geometric term of compressed bonds (p < 0) is left out: K⁺ ⪰ K, K⁺ ⪰ 0.
 void LpsModel::assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) {
+  // a row couples two family hops, beyond the halo's one
+  if (halo_) throw std::logic_error("the two-hop tangent cannot be assembled over several ranks");
   update_dilatation(y);
   const int n = particles_.count();
   const auto& off = families_.offsets;

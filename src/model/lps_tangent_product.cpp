@@ -13,11 +13,14 @@
 // family i's t for the bond i → r, whose direction is −n_q and rate s_q, with c_ir =
 // bond_reverse_weight_[q] and w_ir = reverse_deviatoric()[q]: (K v)_r = Σ_q [(g_q s_q − t_rq −
 // t_ir) n_q + g_q (v_r − v_i)]. Two passes over the bonds as compute_dilatation and compute_forces,
-// each parallel over particles without atomics: P, Q per family, then the rows.
+// each parallel over particles without atomics: P, Q per family, then the rows. Over several
+// ranks both run over the own rows: v's ghosts must be current, and the ghosts' X, Y, γ and V
+// come from their ranks between the passes.
 #include <algorithm>
 
 #include "model/lps_bond_geometry.hpp"
 #include "model/lps_model.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -36,7 +39,7 @@ void LpsModel::linearize(const double* y, bool clamp_compression) {
   tangent_alpha_.resize(n);
   tangent_terms_.resize(n);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const auto g = bond_geometry(y, particles_, i, nbr[b], xi[b]);
       const double p = g.length > 0 ? pair_force(i, b, g.length) : 0.0;
@@ -54,7 +57,6 @@ void LpsModel::linearize(const double* y, bool clamp_compression) {
 
 // After linearize(); one product at a time (the scratch is the model's).
 void LpsModel::apply_tangent(const double* v, double* out) const {
-  const int n = particles_.count();
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
@@ -71,7 +73,7 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
   TangentTerms* terms = tangent_terms_.data();
   // Pass 1: P_i, Q_i into X_i, Y_i.
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
     double P = 0, Q = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
@@ -86,10 +88,12 @@ void LpsModel::apply_tangent(const double* v, double* out) const {
     terms[i].x = alpha[i] * P - gamma * Q;
     terms[i].y = gamma * P;
   }
+  static_assert(sizeof(TangentTerms) == 4 * sizeof(double));
+  if (halo_) halo_->fill(reinterpret_cast<double*>(terms), 4);
   // Pass 2: the rows, s_b recomputed from the members' v it gathers anyway (as in pass 1, so the
   // same bits): cheaper than storing and reading it back, since the product is bandwidth-bound.
 #pragma omp parallel for schedule(static)
-  for (int r = 0; r < n; ++r) {
+  for (int r = row_begin_; r < row_end_; ++r) {
     const double vr0 = v[3 * r], vr1 = v[3 * r + 1], vr2 = v[3 * r + 2];
     const TangentTerms tr = terms[r];
     double o0 = 0, o1 = 0, o2 = 0;

@@ -58,7 +58,8 @@ class Model {
   // call reads: what they share is scratch filled anew by each, or kept for the same positions
   // and revision() only, so that a result never depends on the calls before it.
   virtual void forces(const double* y, double* f) = 0;
-  // Strain energy density W_i of each particle at positions y (N values).
+  // Strain energy density W_i of each particle at positions y (N values); over several ranks
+  // (distribute()) of this rank's rows only, the others untouched. Collective there.
   virtual void energy_density(const double* y, double* w) = 0;
   // Total elastic energy Π = Σ V_i W_i.
   double elastic_energy(const double* y);

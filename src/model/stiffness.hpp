@@ -35,6 +35,10 @@ class Stiffness {
   // Laplacian whose bond weights are a third of the majoriser's bond stiffness (so that L ⊗ I₃
   // has the majoriser's trace at rest), for preconditioners that scale to large scenes.
   virtual void assemble_scalar_stiffness(SparseSymmetric& L) const = 0;
+  // Over several ranks (Model::distribute) the majoriser, the nearest stiffness and the
+  // matrix-free tangent are evaluated on this rank's rows only (the matrix's other rows zero,
+  // out's left as they are), y's and v's ghosts must be current, and each call is
+  // collective; the two-hop tangent, whose rows reach two families, is not available.
 };
 
 }  // namespace fissure
