@@ -87,10 +87,12 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   // particles (nearest's factor: 34 / 30 / 73), 1.9 GB at 95,187.
   const std::size_t particles = families.offsets.size() - 1;
   using P = PetscNewtonSettings::Preconditioner;
-  // Over several ranks the two-hop rows reach beyond the halo: the one-hop majoriser, factored
-  // by MUMPS, takes the tangent's place.
-  if (particles <= 10000) return distributed ? P::majoriser : P::tangent;
-  return P::gamg;
+  // Over several ranks the two-hop rows reach beyond the halo, and GAMG scales where MUMPS's
+  // factor of the majoriser does not (bench/run_distributed_bench.sh, a bar of 4,215 particles
+  // per rank, Newmark at 8.5× the explicit limit, on 1 → 2 ranks: GAMG 0.246 → 0.305 s per
+  // step, the majoriser's factor 0.352 (CHOLMOD) → 1.02 s (MUMPS)).
+  if (distributed) return P::gamg;
+  return particles <= 10000 ? P::tangent : P::gamg;
 }
 
 NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, PetscOptions options,
