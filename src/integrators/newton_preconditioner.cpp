@@ -13,6 +13,7 @@
 #include "linear/nearest_bonds.hpp"
 #include "linear/shifted_system.hpp"
 #include "model/stiffness.hpp"
+#include "parallel/collective.hpp"
 #include "parallel/halo.hpp"
 
 namespace fissure {
@@ -89,8 +90,8 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   using P = PetscNewtonSettings::Preconditioner;
   // Over several ranks the two-hop rows reach beyond the halo, and GAMG scales where MUMPS's
   // factor of the majoriser does not (bench/run_distributed_bench.sh, a bar of 4,215 particles
-  // per rank, Newmark at 8.5× the explicit limit, on 1 → 2 ranks: GAMG 0.246 → 0.305 s per
-  // step, the majoriser's factor 0.352 (CHOLMOD) → 1.02 s (MUMPS)).
+  // per rank, Newmark at 8.5× the explicit limit, on 1 → 2 ranks: GAMG 0.260 → 0.295 s per
+  // step, the majoriser's factor 0.354 (CHOLMOD) → 1.02 s (MUMPS); docs/mpi.md).
   if (distributed) return P::gamg;
   return particles <= 10000 ? P::tangent : P::gamg;
 }
@@ -104,18 +105,21 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
     throw RunError(fmt::format("the {} preconditioner cannot run over several ranks",
                                preconditioner_name(kind)));
   MPI_Comm comm = distributed ? system.dynamics().halo()->comm() : PETSC_COMM_SELF;
+  // over several ranks only the rank's rows are kept (the others empty)
+  const int first = system.dynamics().first_row(), end = system.dynamics().end_row();
   switch (kind) {
     case Kind::tangent:
-      matrix_ = system.tangent() == NewtonSystem::Tangent::majoriser ? bond_pattern(families)
-                                                                     : two_hop_pattern(families);
+      matrix_ = system.tangent() == NewtonSystem::Tangent::majoriser
+                    ? bond_pattern(families, first, end)
+                    : two_hop_pattern(families);
       break;
     case Kind::majoriser:
-      matrix_ = bond_pattern(families);
+      matrix_ = bond_pattern(families, first, end);
       break;
     case Kind::nearest:
     case Kind::gamg:
       nearest_ = nearest_bonds(families, kind == Kind::gamg ? kGamgMembers : kNearestMembers);
-      matrix_ = nearest_bond_pattern(families, nearest_);
+      matrix_ = nearest_bond_pattern(families, nearest_, first, end);
       break;
     case Kind::scalar:
       matrix_ = scalar_bond_pattern(families);
@@ -231,6 +235,14 @@ void NewtonPreconditioner::copy_values() {
   petsc_check(MatAssemblyEnd(petsc_matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
+// shift_and_fix with the held rows' scale of the whole matrix: the largest diagonal over the
+// ranks, as one rank takes it.
+void NewtonPreconditioner::shift_and_hold(double inertia) {
+  double scale = held_scale(matrix_, diagonal_, system_.mass(), inertia);
+  if (system_.distributed()) scale = max_over_ranks(system_.dynamics().halo()->comm(), scale);
+  shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed(), scale);
+}
+
 void NewtonPreconditioner::refresh(const double* z) {
   Stiffness& stiffness = *system_.dynamics().model().stiffness();  // check() made sure
   const double inertia = system_.inertia();
@@ -241,16 +253,16 @@ void NewtonPreconditioner::refresh(const double* z) {
       else
         stiffness.assemble_tangent(z, matrix_,
                                    system_.tangent() == NewtonSystem::Tangent::projected);
-      shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      shift_and_hold(inertia);
       break;
     case Kind::majoriser:
       stiffness.assemble_majoriser(z, matrix_);
-      shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      shift_and_hold(inertia);
       break;
     case Kind::nearest:
     case Kind::gamg:
       stiffness.assemble_nearest_stiffness(z, nearest_, matrix_);
-      shift_and_fix(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
+      shift_and_hold(inertia);
       break;
     case Kind::scalar:
       if (!scalar_assembled_) {

@@ -59,6 +59,7 @@ class NewtonPreconditioner {
   void create_petsc_matrix(const SparseSymmetric& a, int block_size);
   void create_distributed_matrix(const SparseSymmetric& a);
   void copy_values();
+  void shift_and_hold(double inertia);
   RunError not_positive_definite() const;
 
   NewtonSystem& system_;

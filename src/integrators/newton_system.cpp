@@ -20,7 +20,9 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
   force_.resize(mass_.size());
   external_.resize(mass_.size());
   masked_.resize(mass_.size());
-  if (tangent == Tangent::majoriser) majoriser_ = bond_pattern(dynamics.model().families());
+  if (tangent == Tangent::majoriser)  // over several ranks the rank's rows only
+    majoriser_ = bond_pattern(dynamics.model().families(), dynamics.first_row(),
+                              dynamics.end_row());
 }
 
 std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const State& state,

@@ -33,10 +33,14 @@ std::vector<char> nearest_bonds(const Families& families, int members) {
 }
 
 SparseSymmetric nearest_bond_pattern(const Families& families, const std::vector<char>& kept) {
-  const int n = static_cast<int>(families.offsets.size()) - 1;
-  std::vector<std::vector<int>> adjacency(n);
+  return nearest_bond_pattern(families, kept, 0, static_cast<int>(families.offsets.size()) - 1);
+}
+
+SparseSymmetric nearest_bond_pattern(const Families& families, const std::vector<char>& kept,
+                                     int first, int end) {
+  std::vector<std::vector<int>> adjacency(families.offsets.size() - 1);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = first; i < end; ++i) {
     std::vector<int>& row = adjacency[i];
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
       if (kept[b]) row.push_back(families.neighbors[b]);

@@ -25,5 +25,8 @@ std::vector<char> nearest_bonds(const Families& families, int members);
 // 3×3 blocks coupling each particle with itself and the members its kept bonds join, in
 // increasing order (bond_pattern's layout over the kept bonds only).
 SparseSymmetric nearest_bond_pattern(const Families& families, const std::vector<char>& kept);
+// The same with the rows of particles [first, end) only, the others empty (bond_pattern).
+SparseSymmetric nearest_bond_pattern(const Families& families, const std::vector<char>& kept,
+                                     int first, int end);
 
 }  // namespace fissure

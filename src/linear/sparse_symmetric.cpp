@@ -57,10 +57,13 @@ std::vector<int> closed_family(const Families& families, int i) {
 }  // namespace
 
 SparseSymmetric bond_pattern(const Families& families) {
-  const int n = static_cast<int>(families.offsets.size()) - 1;
-  std::vector<std::vector<int>> adjacency(n);
+  return bond_pattern(families, 0, static_cast<int>(families.offsets.size()) - 1);
+}
+
+SparseSymmetric bond_pattern(const Families& families, int first, int end) {
+  std::vector<std::vector<int>> adjacency(families.offsets.size() - 1);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) adjacency[i] = closed_family(families, i);
+  for (int i = first; i < end; ++i) adjacency[i] = closed_family(families, i);
   return expand_blocks(adjacency);
 }
 
