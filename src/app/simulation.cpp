@@ -110,9 +110,10 @@ void Simulation::distribute() {
     throw InputError(config_.file, option.empty() ? "integrator.type" : option,
                      fmt::format("'{}' cannot run over several ranks yet with these options ({} "
                                  "ranks were started); velocity_verlet, symplectic_euler, "
-                                 "arkode with an explicit integrator.method and petsc_newton "
-                                 "with integrator.preconditioner auto, majoriser, nearest or "
-                                 "gamg can (docs/mpi.md)",
+                                 "arkode (its implicit and IMEX methods with "
+                                 "integrator.preconditioner auto or nearest) and petsc_newton "
+                                 "(with integrator.preconditioner auto, majoriser, nearest or "
+                                 "gamg) can (docs/mpi.md)",
                                  type, ranks_->size()));
   }
   try {

@@ -157,7 +157,8 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
       if (s.implicit_rhs) {
         using P = ArkodeSettings::Preconditioner;
         P kind = settings_.preconditioner;
-        if (kind == P::automatic) kind = choose_arkode_preconditioner(s.origin.size() / 3);
+        if (kind == P::automatic)
+          kind = choose_arkode_preconditioner(s.origin.size() / 3, s.distributed);
         s.reduced = std::make_unique<ReducedNewtonSystem>(
             dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov,
             settings_.factor_precision, kind == P::nearest);

@@ -24,9 +24,14 @@ class Arkode final : public Integrator {
     return settings_.fixed_step && method_.kind == ArkodeMethod::Kind::explicit_rk;
   }
   bool adaptive() const override { return !settings_.fixed_step; }
-  // Explicit methods over several ranks: u holds this rank's rows in an MPI+X vector, so its
-  // norms (adaptive steps) are global (issue 18; docs/mpi.md).
-  bool distributable() const override { return method_.kind == ArkodeMethod::Kind::explicit_rk; }
+  // Over several ranks: u holds this rank's rows in an MPI+X vector, so its norms (adaptive
+  // steps) are global (issue 18; docs/mpi.md); implicit and IMEX methods with the nearest
+  // preconditioner (auto's choice there), block Jacobi over the ranks.
+  bool distributable() const override {
+    return method_.kind == ArkodeMethod::Kind::explicit_rk ||
+           settings_.preconditioner != ArkodeSettings::Preconditioner::tangent;
+  }
+  std::string undistributable_option() const override { return "integrator.preconditioner"; }
   Statistics statistics() const override;
   // New tolerances for the following steps (adaptive runs), e.g. to tighten them mid-run.
   void set_tolerances(double rtol, double atol);

@@ -11,6 +11,8 @@
 #include "linear/nearest_bonds.hpp"
 #include "linear/shifted_system.hpp"
 #include "model/stiffness.hpp"
+#include "parallel/collective.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -18,16 +20,22 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
                                          const std::vector<double>& origin, bool reuse,
                                          int krylov_limit, FactorPrecision precision, bool nearest)
     : dynamics_(dynamics),
+      first_(3 * std::size_t(dynamics.first_row())),
+      count_(3 * std::size_t(dynamics.end_row()) - first_),
       arkode_memory_(arkode_memory),
       origin_(origin),
       reuse_(reuse),
       krylov_limit_(krylov_limit),
       factor_(precision),
-      cg_(origin.size()) {
+      cg_(count_, distributed() ? ConjugateGradient::Sum([this](double v) { return sum(v); })
+                                : ConjugateGradient::Sum()) {
   const Families& families = dynamics.model().families();
+  if (distributed() && !distributable(nearest))
+    throw RunError("arkode: only the nearest preconditioner runs over several ranks");
   if (nearest) {
     nearest_ = nearest_bonds(families, kNearestMembers);
-    stiffness_ = nearest_bond_pattern(families, nearest_);
+    // over several ranks the rank's rows only, the others empty
+    stiffness_ = nearest_bond_pattern(families, nearest_, dynamics.first_row(), dynamics.end_row());
   } else {
     stiffness_ = two_hop_pattern(families);
   }
@@ -38,9 +46,39 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
   for (std::size_t i = 0; i < m.size(); ++i)
     for (int d = 0; d < 3; ++d) mass_[3 * i + d] = m[i];
   const std::size_t n = mass_.size();
-  for (auto* v : {&predicted_, &assembled_at_, &scratch_, &rhs_, &held_step_, &coupling_})
-    v->resize(n);
+  for (auto* v : {&predicted_, &assembled_at_, &held_step_, &coupling_}) v->resize(n);
+  scratch_.resize(count_);
+  rhs_.resize(count_);
   fixed_.assign(n, 0);
+  if (!distributed()) return;
+  product_in_.resize(n);
+  product_out_.resize(n);
+  // the diagonal block: the rank's rows, the entries in its own columns, renumbered
+  block_.rows = static_cast<int>(count_);
+  block_.offsets.assign(count_ + 1, 0);
+  for (std::size_t r = 0; r < count_; ++r) {
+    const int row = static_cast<int>(first_ + r);
+    for (int e = system_.offsets[row]; e < system_.offsets[row + 1]; ++e) {
+      const std::size_t c = system_.columns[e];
+      if (c < first_ || c >= first_ + count_) continue;
+      block_.columns.push_back(static_cast<int>(c - first_));
+      block_source_.push_back(e);
+    }
+    block_.offsets[r + 1] = static_cast<int>(block_.columns.size());
+  }
+  block_.values.assign(block_.columns.size(), 0.0);
+}
+
+double ReducedNewtonSystem::sum(double value) const {
+  if (!distributed()) return value;
+  std::vector<double> values = {value};
+  sum_over_ranks(dynamics_.halo()->comm(), values);
+  return values[0];
+}
+
+void ReducedNewtonSystem::extract_block() {
+  for (std::size_t e = 0; e < block_source_.size(); ++e)
+    block_.values[e] = system_.values[block_source_[e]];
 }
 
 void ReducedNewtonSystem::begin_stage_if_new() {
@@ -50,14 +88,17 @@ void ReducedNewtonSystem::begin_stage_if_new() {
   arkode_check(ARKStepGetNonlinearSystemData(arkode_memory_, &t, &predicted, &z, &fi, &gamma,
                                              &sdata, &user_data),
                "ARKStepGetNonlinearSystemData");
-  const double* displacement = N_VGetArrayPointer(predicted);
-  bool same = stage_ > 0 && t == stage_time_;
-  for (std::size_t k = 0; k < mass_.size(); ++k) {
-    scratch_[k] = origin_[k] + displacement[k];
-    same = same && scratch_[k] == predicted_[k];
+  const double* displacement = N_VGetArrayPointer(predicted);  // the rank's rows
+  int same = stage_ > 0 && t == stage_time_;
+  for (std::size_t k = 0; k < count_; ++k) {
+    scratch_[k] = origin_[first_ + k] + displacement[k];
+    same = same && scratch_[k] == predicted_[first_ + k];
   }
+  // a new stage's linearization is collective: every rank begins it when one rank's changed
+  if (distributed()) same = min_over_ranks(dynamics_.halo()->comm(), same);
   if (same) return;
-  predicted_.swap(scratch_);
+  std::copy(scratch_.begin(), scratch_.end(), predicted_.begin() + first_);
+  dynamics_.share(predicted_.data());
   stage_time_ = t;
   ++stage_;
   stage_solves_ = 0;
@@ -104,8 +145,14 @@ void ReducedNewtonSystem::factorize(double gamma) {
   const double c = dynamics_.damping();
   auto attempt = [&] {
     system_.values = stiffness_.values;
-    shift_and_fix(system_, diagonal_, mass_, (1 + gamma * c) / (gamma * gamma), fixed_);
-    if (!factor_.factorize(system_))
+    const double shift = (1 + gamma * c) / (gamma * gamma);
+    double scale = held_scale(system_, diagonal_, mass_, shift);
+    if (distributed()) scale = max_over_ranks(dynamics_.halo()->comm(), scale);
+    shift_and_fix(system_, diagonal_, mass_, shift, fixed_, scale);
+    if (distributed()) extract_block();
+    int factored = factor_.factorize(distributed() ? block_ : system_);
+    if (distributed()) factored = min_over_ranks(dynamics_.halo()->comm(), factored);
+    if (!factored)
       throw RunError(fmt::format("CHOLMOD: the {}×{} system matrix is not positive definite",
                                  system_.rows, system_.rows));
     ++factorizations_;
@@ -160,15 +207,18 @@ void ReducedNewtonSystem::solve(const double* b, double* x, double tol) {
 }
 
 void ReducedNewtonSystem::reduced_rhs(const double* b, double gamma, bool matrix_free) {
-  const std::size_t n = mass_.size();
   const double* by = b;
-  const double* bv = b + n;
+  const double* bv = b + count_;
   const double c = dynamics_.damping();
-  bool any_held = false;
-  for (std::size_t k = 0; k < n; ++k) {
-    held_step_[k] = fixed_[k] ? by[k] + gamma * bv[k] : 0.0;
-    any_held = any_held || (fixed_[k] && held_step_[k] != 0);
+  int any_held = 0;
+  for (std::size_t k = 0; k < count_; ++k) {
+    const std::size_t u = first_ + k;
+    held_step_[u] = fixed_[u] ? by[k] + gamma * bv[k] : 0.0;
+    any_held = any_held || (fixed_[u] && held_step_[u] != 0);
   }
+  // the coupling's product is collective, and reads the ghosts' held steps
+  if (distributed()) any_held = -min_over_ranks(dynamics_.halo()->comm(), -any_held);
+  if (any_held) dynamics_.share(held_step_.data());
   if (any_held && matrix_free) {
     dynamics_.model().stiffness()->apply_tangent(held_step_.data(), coupling_.data());
     ++tangent_products_;
@@ -176,19 +226,20 @@ void ReducedNewtonSystem::reduced_rhs(const double* b, double gamma, bool matrix
     stiffness_.multiply(held_step_.data(), coupling_.data());
   }
   const double g2 = gamma * gamma;
-  for (std::size_t k = 0; k < n; ++k)
-    rhs_[k] = fixed_[k] ? 0.0
-                        : (mass_[k] * ((1 + gamma * c) * by[k] + gamma * bv[k])) / g2 -
-                              (any_held ? coupling_[k] : 0.0);
+  for (std::size_t k = 0; k < count_; ++k) {
+    const std::size_t u = first_ + k;
+    rhs_[k] = fixed_[u] ? 0.0
+                        : (mass_[u] * ((1 + gamma * c) * by[k] + gamma * bv[k])) / g2 -
+                              (any_held ? coupling_[u] : 0.0);
+  }
 }
 
 // Δy on held unknowns is prescribed; Δv = (Δy − b_y)/γ from the first row of (I − γJ)Δ = b.
 void ReducedNewtonSystem::expand(const double* b, double gamma, double* x) const {
-  const std::size_t n = mass_.size();
   double* dy = x;
-  double* dv = x + n;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (fixed_[k]) dy[k] = held_step_[k];
+  double* dv = x + count_;
+  for (std::size_t k = 0; k < count_; ++k) {
+    if (fixed_[first_ + k]) dy[k] = held_step_[first_ + k];
     dv[k] = (dy[k] - b[k]) / gamma;
   }
 }
@@ -201,12 +252,23 @@ void ReducedNewtonSystem::linearize_stage() {
   ++linearizations_;
 }
 
+// v and out the rank's unknowns; over several ranks K is applied to v with its ghosts shared.
 void ReducedNewtonSystem::apply_system(double gamma, const double* v, double* out) {
-  dynamics_.model().stiffness()->apply_tangent(v, out);
+  const double* v_all = v;
+  double* out_all = out;
+  if (distributed()) {
+    std::copy(v, v + count_, product_in_.begin() + first_);
+    dynamics_.share(product_in_.data());
+    v_all = product_in_.data();
+    out_all = product_out_.data();
+  }
+  dynamics_.model().stiffness()->apply_tangent(v_all, out_all);
   ++tangent_products_;
   const double shift = (1 + gamma * dynamics_.damping()) / (gamma * gamma);
-  for (std::size_t k = 0; k < mass_.size(); ++k)
-    out[k] = fixed_[k] ? 0.0 : out[k] + shift * mass_[k] * v[k];
+  for (std::size_t k = 0; k < count_; ++k) {
+    const std::size_t u = first_ + k;
+    out[k] = fixed_[u] ? 0.0 : out_all[u] + shift * mass_[u] * v[k];
+  }
 }
 
 // Z F⁻¹ Z, Z zeroing the stage's held unknowns: SPD on the free ones whichever unknowns the
@@ -214,8 +276,8 @@ void ReducedNewtonSystem::apply_system(double gamma, const double* v, double* ou
 void ReducedNewtonSystem::precondition(const double* r, double* z) {
   factor_.solve(r, z);
   ++back_solves_;
-  for (std::size_t k = 0; k < mass_.size(); ++k)
-    if (fixed_[k]) z[k] = 0;
+  for (std::size_t k = 0; k < count_; ++k)
+    if (fixed_[first_ + k]) z[k] = 0;
 }
 
 // The stopping test is the one ARKODE asks of its linear solver, ‖b − (I − γJ)x‖₂ ≤ tol (tol
@@ -246,12 +308,12 @@ void ReducedNewtonSystem::solve_with_nearest(const double* b, double gamma, doub
 
 bool ReducedNewtonSystem::solve_by_cg(double gamma, double tol, double* dy) {
   auto done = [&](const double* r) {
-    double sum = 0;
-    for (std::size_t k = 0; k < mass_.size(); ++k) {
-      const double e = gamma * r[k] / mass_[k];
-      if (!fixed_[k]) sum += e * e;
+    double squares = 0;
+    for (std::size_t k = 0; k < count_; ++k) {
+      const double e = gamma * r[k] / mass_[first_ + k];
+      if (!fixed_[first_ + k]) squares += e * e;
     }
-    return std::sqrt(sum) <= tol;
+    return std::sqrt(sum(squares)) <= tol;
   };
   const auto outcome = cg_.solve([&](const double* v, double* out) { apply_system(gamma, v, out); },
                                  [&](const double* r, double* z) { precondition(r, z); }, done,

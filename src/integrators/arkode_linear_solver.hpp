@@ -21,6 +21,12 @@
 // nearest members' one-hop matrix (Stiffness::assemble_nearest_stiffness) in place of K: never S
 // itself, so every solve is CG on (R), refreshed as above (and, without reuse, at every γ
 // change); where CG breaks down (S with the exact K not SPD) the matrix-free K becomes K⁺.
+//
+// Over several MPI ranks (Dynamics::distribute; docs/mpi.md) ARKODE's vectors hold the rank's
+// own rows, [Δy; Δv] of them; the system's own arrays stay 3N in the global numbering with the
+// ghosts' positions shared, CG's dot products are summed over the ranks, and the factor is of
+// the rank's diagonal block of S (block Jacobi): `nearest` only, the two-hop tangent's rows
+// reaching beyond the halo.
 #include <sundials/sundials_linearsolver.h>
 
 #include <exception>
@@ -42,7 +48,10 @@ class ReducedNewtonSystem {
   // nearest: factorize the nearest members' matrix instead of the two-hop tangent.
   ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory, const std::vector<double>& origin,
                       bool reuse, int krylov_limit, FactorPrecision precision, bool nearest);
-  // x = (I − γJ)⁻¹ b, with ‖b − (I − γJ)x‖₂ ≤ tol where CG is used (solve_by_cg). ARKODE 6.4
+  // Whether a ReducedNewtonSystem runs over several ranks with this factor.
+  static bool distributable(bool nearest) { return nearest; }
+  // x = (I − γJ)⁻¹ b, with ‖b − (I − γJ)x‖₂ ≤ tol where CG is used (solve_by_cg); b and x the
+  // rank's own rows ([Δy; Δv], 6 × its rows; all rows on one rank). ARKODE 6.4
   // does not call setup for a matrix-embedded solver, so the matrix is refreshed here: at the
   // first solve, after bonds broke and as the reuse policy says.
   void solve(const double* b, double* x, double tol);
@@ -79,11 +88,17 @@ class ReducedNewtonSystem {
   void apply_system(double gamma, const double* v, double* out);
   // z = the factor's solve of r, zero on held unknowns.
   void precondition(const double* r, double* z);
+  // Over several ranks: the rank's diagonal block of system_, from the entries block_source_
+  // names; the factor is made of it. Σ over the ranks (one rank: the value).
+  void extract_block();
+  double sum(double value) const;
+  bool distributed() const { return dynamics_.halo() != nullptr; }
   // The model's matrix-free tangent at the stage's prediction, with the factor's tangent
   // choice (exact or K⁺).
   void linearize_stage();
 
   Dynamics& dynamics_;
+  std::size_t first_ = 0, count_ = 0;  // the rank's unknowns: [first_, first_ + count_) of 3N
   void* arkode_memory_;
   const std::vector<double>& origin_;
   bool reuse_;
@@ -92,6 +107,8 @@ class ReducedNewtonSystem {
   SparseSymmetric stiffness_;         // K at the last assembly
   std::vector<double> assembled_at_;  // ... at these positions
   SparseSymmetric system_;            // S with held unknowns taken out
+  SparseSymmetric block_;             // over several ranks: its diagonal block, rows renumbered
+  std::vector<int> block_source_;     // ... each entry's index in system_
   std::vector<int> diagonal_;
   std::vector<double> mass_;  // per unknown
   SupernodalCholesky factor_;
@@ -113,7 +130,8 @@ class ReducedNewtonSystem {
   Refreshes::Reason pending_ = Refreshes::first;
   Refreshes refreshes_;
   long back_solves_ = 0, krylov_iterations_ = 0, tangent_products_ = 0, linearizations_ = 0;
-  std::vector<double> scratch_, rhs_, held_step_, coupling_;
+  // rhs_ and scratch_ the rank's unknowns; held_step_, coupling_ and the product's in and out 3N
+  std::vector<double> scratch_, rhs_, held_step_, coupling_, product_in_, product_out_;
 };
 
 // Wraps `system` (not owned) as a matrix-embedded SUNLinearSolver. An exception a solve throws

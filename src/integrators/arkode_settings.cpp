@@ -16,12 +16,13 @@ const std::vector<std::string>& arkode_keys() {
   return keys;
 }
 
-ArkodeSettings::Preconditioner choose_arkode_preconditioner(std::size_t particles) {
+ArkodeSettings::Preconditioner choose_arkode_preconditioner(std::size_t particles,
+                                                            bool distributed) {
   // As petsc_newton's auto below its multigrid: the two-hop factor while it fits (1.77 GB at
   // 7,948 particles, 6.65 GB at 17,096), the nearest members' one-hop factor above
-  // (docs/integrators.md).
-  return particles <= 10000 ? ArkodeSettings::Preconditioner::tangent
-                            : ArkodeSettings::Preconditioner::nearest;
+  // (docs/integrators.md); over several ranks the two-hop rows reach beyond the halo.
+  return particles <= 10000 && !distributed ? ArkodeSettings::Preconditioner::tangent
+                                            : ArkodeSettings::Preconditioner::nearest;
 }
 
 std::shared_ptr<const IntegratorOptions> read_arkode_settings(const OptionReader& r) {

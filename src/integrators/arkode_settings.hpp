@@ -29,8 +29,10 @@ struct ArkodeSettings final : IntegratorOptions {
   Preconditioner preconditioner = Preconditioner::automatic;
 };
 
-// What auto picks for a scene of `particles` particles (tangent or nearest).
-ArkodeSettings::Preconditioner choose_arkode_preconditioner(std::size_t particles);
+// What auto picks for a scene of `particles` particles (tangent or nearest), on one rank or
+// over several.
+ArkodeSettings::Preconditioner choose_arkode_preconditioner(std::size_t particles,
+                                                            bool distributed = false);
 
 // The keys under integrator: that are arkode's own, and their parser.
 const std::vector<std::string>& arkode_keys();

@@ -4,15 +4,11 @@
 
 namespace fissure {
 
-namespace {
-
-double dot(const std::vector<double>& a, const std::vector<double>& b) {
+double ConjugateGradient::dot(const std::vector<double>& a, const std::vector<double>& b) const {
   double sum = 0;
   for (std::size_t k = 0; k < a.size(); ++k) sum += a[k] * b[k];
-  return sum;
+  return sum_ ? sum_(sum) : sum;
 }
-
-}  // namespace
 
 ConjugateGradient::Outcome ConjugateGradient::solve(const Product& A, const Product& P,
                                                     const Test& done, int limit, const double* b,

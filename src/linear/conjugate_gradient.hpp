@@ -3,6 +3,7 @@
 // SPD operator given as a product, with the stopping test left to the caller: the caller knows
 // in which norm its residual is judged (ARKODE's stage systems: arkode_linear_solver.cpp).
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace fissure {
@@ -17,7 +18,11 @@ class ConjugateGradient {
     iteration_limit,  // `limit` products with A did not reach the test
     breakdown,        // pᵀAp ≤ 0: A (or the preconditioner) is not positive definite
   };
-  explicit ConjugateGradient(std::size_t n) : r_(n), z_(n), p_(n), q_(n) {}
+  // Σ over the parts of a vector split over MPI ranks (each rank's dot product in, the whole
+  // one out; the same on every rank); empty on one rank.
+  using Sum = std::function<double(double)>;
+  explicit ConjugateGradient(std::size_t n, Sum sum = {})
+      : r_(n), z_(n), p_(n), q_(n), sum_(std::move(sum)) {}
   // x = A⁻¹ b from x = 0, preconditioned by P (z = P⁻¹ r), with at most `limit` products with A.
   Outcome solve(const Product& A, const Product& P, const Test& done, int limit, const double* b,
                 double* x);
@@ -25,7 +30,10 @@ class ConjugateGradient {
   int iterations() const { return iterations_; }
 
  private:
+  double dot(const std::vector<double>& a, const std::vector<double>& b) const;
+
   std::vector<double> r_, z_, p_, q_;
+  Sum sum_;
   int iterations_ = 0;
 };
 

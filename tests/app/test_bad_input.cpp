@@ -116,10 +116,11 @@ TEST(BadInput, WhatCannotRunOnSeveralRanksIsRefusedBeforeAnythingIsWritten) {
         std::string(FISSURE_BINARY) + " " + args);
   };
   const auto refused = on_two_ranks("run " + (dir / "scene.yaml").string() + " --out " +
-                                    out.string() + " --set integrator.type=arkode --set integrator.method=SDIRK_2_1_2");
+                                    out.string() + " --set integrator.type=arkode --set integrator.method=SDIRK_2_1_2 " +
+                                    "--set integrator.preconditioner=tangent");
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   const std::string expected =
-      "scene.yaml: integrator.type: 'arkode' cannot run over several ranks yet";
+      "scene.yaml: integrator.preconditioner: 'arkode' cannot run over several ranks yet";
   const auto first = refused.output.find(expected);
   EXPECT_NE(first, std::string::npos) << refused.output;
   EXPECT_EQ(refused.output.find(expected, first + 1), std::string::npos) << refused.output;

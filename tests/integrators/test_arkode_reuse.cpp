@@ -242,6 +242,8 @@ TEST(ArkodeFactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndNearestAbove) {
   EXPECT_EQ(choose_arkode_preconditioner(857), P::tangent);
   EXPECT_EQ(choose_arkode_preconditioner(10000), P::tangent);
   EXPECT_EQ(choose_arkode_preconditioner(10001), P::nearest);
+  // over several ranks the two-hop rows reach past the halo
+  EXPECT_EQ(choose_arkode_preconditioner(857, true), P::nearest);
 }
 
 // Bonds broken mid-run (every bond of particle 0) and reported: the next solve refreshes the
