@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
 
 #include "io/checkpoint_file.hpp"
 
@@ -29,15 +28,15 @@ void CheckpointOutput::after_step(const RunParts& run, const Step&) {
 namespace {
 
 // Over several ranks each rank knows its own rows: the per-particle arrays of the model and the
-// integrator (every array of theirs, N values per particle) are gathered on the root, the rest is
-// the same on every rank.
+// integrator (theirs with a whole number of values per particle) are gathered on the root; the
+// rest (the other parts' arrays, and counters such as petsc_newton's load increments) is the
+// same on every rank.
 NamedArrays gathered(const RunRanks& ranks, NamedArrays part, int particles) {
   if (!ranks.distributed()) return part;
   for (auto& [name, values] : part) {
-    const bool per_particle = name.rfind("model.", 0) == 0 || name.rfind("integrator.", 0) == 0;
+    const bool per_particle = (name.rfind("model.", 0) == 0 || name.rfind("integrator.", 0) == 0) &&
+                              !values.empty() && values.size() % particles == 0;
     if (!per_particle) continue;
-    if (values.size() % particles != 0)
-      throw std::logic_error(name + " is not a per-particle array: it cannot be gathered");
     values = ranks.gather(values, static_cast<int>(values.size() / particles));
   }
   return part;

@@ -149,9 +149,15 @@ void ReducedNewtonSystem::factorize(double gamma) {
     double scale = held_scale(system_, diagonal_, mass_, shift);
     if (distributed()) scale = max_over_ranks(dynamics_.halo()->comm(), scale);
     shift_and_fix(system_, diagonal_, mass_, shift, fixed_, scale);
-    if (distributed()) extract_block();
-    int factored = factor_.factorize(distributed() ? block_ : system_);
-    if (distributed()) factored = min_over_ranks(dynamics_.halo()->comm(), factored);
+    int factored = 0;
+    if (!distributed()) {
+      factored = factor_.factorize(system_);
+    } else {
+      // an error of CHOLMOD's on one rank stops every rank, as a failure does
+      extract_block();
+      agree(dynamics_.halo()->comm(), [&] { factored = factor_.factorize(block_); });
+      factored = min_over_ranks(dynamics_.halo()->comm(), factored);
+    }
     if (!factored)
       throw RunError(fmt::format("CHOLMOD: the {}×{} system matrix is not positive definite",
                                  system_.rows, system_.rows));

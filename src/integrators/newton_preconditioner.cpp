@@ -45,9 +45,10 @@ bool NewtonPreconditioner::distributable(Kind kind, NewtonSystem::Tangent tangen
   switch (kind) {
     case Kind::majoriser:
     case Kind::nearest:
-    case Kind::gamg:
     case Kind::automatic:
       return true;
+    case Kind::gamg:  // hung on 3 ranks (choose_preconditioner): refused until understood
+      return false;
     case Kind::tangent:  // the two-hop tangent, unless the tangent is the majoriser
       return tangent == NewtonSystem::Tangent::majoriser;
     case Kind::scalar:  // its N×N matrix is applied per component: not written for ranks yet
@@ -88,11 +89,13 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   // particles (nearest's factor: 34 / 30 / 73), 1.9 GB at 95,187.
   const std::size_t particles = families.offsets.size() - 1;
   using P = PetscNewtonSettings::Preconditioner;
-  // Over several ranks the two-hop rows reach beyond the halo, and GAMG scales where MUMPS's
-  // factor of the majoriser does not (bench/run_distributed_bench.sh, a bar of 4,215 particles
-  // per rank, Newmark at 8.5× the explicit limit, on 1 → 2 ranks: GAMG 0.260 → 0.295 s per
-  // step, the majoriser's factor 0.354 (CHOLMOD) → 1.02 s (MUMPS); docs/mpi.md).
-  if (distributed) return P::gamg;
+  // Over several ranks the two-hop rows reach beyond the halo: the nearest members' factor
+  // (MUMPS), whose CG iterations stay flat as the scene grows with the ranks and which costs
+  // less than the majoriser's (bench/run_distributed_bench.sh, 4,215 particles per rank, 1 → 2
+  // ranks: 0.386 → 0.664 s per step against 0.367 → 1.14 s). GAMG scaled better still (0.260 →
+  // 0.295 s) but hung on 3 ranks in a run that wrote checkpoints, not yet understood: it is
+  // refused there (docs/mpi.md).
+  if (distributed) return P::nearest;
   return particles <= 10000 ? P::tangent : P::gamg;
 }
 
@@ -211,6 +214,10 @@ void NewtonPreconditioner::create_distributed_matrix(const SparseSymmetric& a) {
               "MatMPIAIJSetPreallocationCSR");
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+  // A M + the one-hop majoriser or nearest stiffness (PSD), held rows on the diagonal: MUMPS
+  // factors it as SPD (LLᵀ), and reports a matrix that is not
+  if (kind_ != Kind::gamg)
+    petsc_check(MatSetOption(petsc_matrix_, MAT_SPD, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOption(petsc_matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE),
               "MatSetOption");
 }
@@ -307,7 +314,11 @@ void NewtonPreconditioner::refresh(const double* z) {
   set_blas_threads(1);
   PCFailedReason reason = PC_NOERROR;
   if (code == 0) petsc_check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
-  if (code != 0 || reason != PC_NOERROR) {
+  int failed = code != 0 || reason != PC_NOERROR;
+  // every rank takes the same way (MUMPS reports a global status; other solvers may not)
+  if (system_.distributed())
+    failed = -min_over_ranks(system_.dynamics().halo()->comm(), -failed);
+  if (failed) {
     // CHOLMOD leaves a failed supernodal factor that it cannot refactorize ("cannot operate on
     // supernodal L"): without a reset every later refresh, the projected tangent's included,
     // would fail too. The next refresh analyses the pattern afresh.

@@ -82,6 +82,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   std::vector<MajoriserRow> majoriser_rows() const;
   std::pair<double, double> majoriser_weights(int i, int b) const;
   double majoriser_bond_row(const std::vector<MajoriserRow>& rows, int i, int b) const;
+  // h_ji of the same bond from row i's copies of row j's weights (lps_stiffness.cpp).
+  double majoriser_reverse_row(const std::vector<MajoriserRow>& rows, int i, int b) const;
   // W_i at y with row i's dilatation θ_i (energy_density's sum).
   double row_energy(const double* y, int i, double theta) const;
   double pair_force(int i, std::size_t b, double length) const;

@@ -17,6 +17,8 @@
 #include "linear/sparse_symmetric.hpp"
 #include "model/lps_bond_geometry.hpp"
 #include "model/lps_model.hpp"
+#include "parallel/collective.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -68,12 +70,14 @@ double LpsModel::pair_force(int i, std::size_t b, double length) const {
 // for every directed bond: a bond's stiffness is h_ij + h_ji. A broken bond (w = c = 0) has
 // c̄ = r = 0, so h = 0; it is set so explicitly, so that no 0·∞ of a degenerate family can give it
 // a stiffness.
+// Over several ranks the own rows, and the ghosts' from their ranks (another rank's row reflects
+// the bonds broken there).
 std::vector<LpsModel::MajoriserRow> LpsModel::majoriser_rows() const {
   const int n = particles_.count();
   const auto& off = families_.offsets;
   std::vector<MajoriserRow> rows(n);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     const double m = weighted_volume_[i], B = terms_[i].deviatoric;
     double sum_c = 0, sum_r = 0, norm_c = 0, norm_r = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
@@ -88,6 +92,8 @@ std::vector<LpsModel::MajoriserRow> LpsModel::majoriser_rows() const {
     const double q = eps > 0 ? B * m / (9.0 * eps) : 0.0;
     rows[i] = {a * sum_c, q * sum_r};
   }
+  static_assert(sizeof(MajoriserRow) == 2 * sizeof(double));
+  if (halo_) halo_->fill(reinterpret_cast<double*>(rows.data()), 2);
   return rows;
 }
 
@@ -96,6 +102,22 @@ std::pair<double, double> LpsModel::majoriser_weights(int i, int b) const {
   const double Vj = particles_.volume[families_.neighbors[b]], m = weighted_volume_[i];
   const double c = bond_weight_[b] * Vj;
   return {c, m > 0 ? c - 3.0 * bond_deviatoric_[b] * families_.reference_length[b] * Vj / m : 0.0};
+}
+
+// h_ji of bond b (in row i, to member j): majoriser_bond_row(rows, j, reverse[b]) from row i's
+// copies of the pair's weights in row j (c_ji, w_ji, the same floats) and j's per-particle
+// terms, without reading row j's bonds (over several ranks another rank's, stale there once
+// bonds break). M_j must be current (the halo's, over several ranks).
+double LpsModel::majoriser_reverse_row(const std::vector<MajoriserRow>& rows, int i, int b) const {
+  const float w = reverse_deviatoric()[b];
+  if (w == 0) return 0.0;
+  const int j = families_.neighbors[b];
+  const auto& V = particles_.volume;
+  const double m = weighted_volume_[j];
+  const double c = bond_reverse_weight_[b] * V[i];
+  const double r = m > 0 ? c - 3.0 * w * families_.reference_length[b] * V[i] / m : 0.0;
+  return V[j] * (terms_[j].deviatoric * w * V[i] + rows[j].a_sum_c * std::abs(c) +
+                 rows[j].q_sum_r * std::abs(r));
 }
 
 double LpsModel::majoriser_bond_row(const std::vector<MajoriserRow>& rows, int i, int b) const {
@@ -112,7 +134,6 @@ double LpsModel::majoriser_bond_row(const std::vector<MajoriserRow>& rows, int i
 void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
   const std::vector<MajoriserRow> rows = majoriser_rows();
   const auto& off = families_.offsets;
-  const auto& rev = families_.reverse;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < particles_.count(); ++i) {
     // Row i of scalar_bond_pattern is {i} ∪ H_i sorted, H_i sorted: bond k of the row is entry
@@ -120,9 +141,7 @@ void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
     const int first = L.offsets[i], self = self_position(families_, i);
     double diagonal = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double k = (majoriser_bond_row(rows, i, b) +
-                        majoriser_bond_row(rows, families_.neighbors[b], rev[b])) /
-                       3.0;
+      const double k = (majoriser_bond_row(rows, i, b) + majoriser_reverse_row(rows, i, b)) / 3.0;
       const int k_index = b - off[i];
       L.values[first + k_index + (k_index >= self ? 1 : 0)] = -k;
       diagonal += k;
@@ -136,7 +155,9 @@ void LpsModel::assemble_scalar_stiffness(SparseSymmetric& L) const {
 // −k n nᵀ in (i,j). Two bounds on λ_max(S), both valid, the smaller taken: by blocks (norms
 // ‖k n nᵀ‖ = k), Σ_j k_ij w_ij; by scalar rows (i, d), Σ_j k_ij w_ij |n_d| ‖n‖₁; with
 // w_ij = 1/m_i + 1/√(m_i m_j). K ⪯ K^bw makes it a bound for the exact tangent too; symplectic
-// Euler and Verlet are stable for dt < 2/√λ_max (notes §4).
+// Euler and Verlet are stable for dt < 2/√λ_max (notes §4). Over several ranks each rank bounds
+// its own rows and the largest bounds over the ranks are taken: every rank gets one rank's value
+// (collective there).
 double LpsModel::stable_time_step() const {
   const std::vector<MajoriserRow> rows = majoriser_rows();
   const auto& off = families_.offsets;
@@ -145,7 +166,7 @@ double LpsModel::stable_time_step() const {
   const auto& mass = particles_.mass;
   double by_blocks = 0, by_rows = 0;
 #pragma omp parallel for reduction(max : by_blocks, by_rows) schedule(static)
-  for (int i = 0; i < particles_.count(); ++i) {
+  for (int i = row_begin_; i < row_end_; ++i) {
     double block = 0, row[3] = {0, 0, 0};
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const int j = nbr[b];
@@ -153,14 +174,17 @@ double LpsModel::stable_time_step() const {
       const double n[3] = {std::abs(x[3 * j] - x[3 * i]) / xi,
                            std::abs(x[3 * j + 1] - x[3 * i + 1]) / xi,
                            std::abs(x[3 * j + 2] - x[3 * i + 2]) / xi};
-      const double k =
-          (majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, j, families_.reverse[b])) *
-          (1.0 / mass[i] + 1.0 / std::sqrt(mass[i] * mass[j]));
+      const double k = (majoriser_bond_row(rows, i, b) + majoriser_reverse_row(rows, i, b)) *
+                       (1.0 / mass[i] + 1.0 / std::sqrt(mass[i] * mass[j]));
       block += k;
       for (int d = 0; d < 3; ++d) row[d] += k * n[d] * (n[0] + n[1] + n[2]);
     }
     by_blocks = std::max(by_blocks, block);
     by_rows = std::max({by_rows, row[0], row[1], row[2]});
+  }
+  if (halo_) {
+    by_blocks = max_over_ranks(halo_->comm(), by_blocks);
+    by_rows = max_over_ranks(halo_->comm(), by_rows);
   }
   const double lambda_max = std::min(by_blocks, by_rows);
   return lambda_max > 0 ? 2.0 / std::sqrt(lambda_max) : std::numeric_limits<double>::infinity();
@@ -185,14 +209,15 @@ void LpsModel::assemble_bond_blocks(const double* y, const std::vector<char>* ke
   const auto& off = families_.offsets;
   const auto& nbr = families_.neighbors;
   const auto& xi = families_.reference_length;
+  if (halo_) halo_->fill(weighted_volume_.data(), 1);  // M_j of the ghosts, for h_ji
   const std::vector<MajoriserRow> rows = majoriser_rows();
   const auto bond_stiffness = [&](int i, int b) {
-    return majoriser_bond_row(rows, i, b) + majoriser_bond_row(rows, nbr[b], families_.reverse[b]);
+    return majoriser_bond_row(rows, i, b) + majoriser_reverse_row(rows, i, b);
   };
   const auto is_kept = [&](int b) { return !kept || (*kept)[b]; };
   std::vector<double> scale(kept ? n : 0);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < static_cast<int>(scale.size()); ++i) {
+  for (int i = kept ? row_begin_ : 0; i < (kept ? row_end_ : 0); ++i) {
     double family = 0, near = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
       const double moment = bond_stiffness(i, b) * xi[b] * xi[b];
@@ -201,6 +226,7 @@ void LpsModel::assemble_bond_blocks(const double* y, const std::vector<char>* ke
     }
     scale[i] = near > 0 ? family / near : 1.0;
   }
+  if (kept && halo_) halo_->fill(scale.data(), 1);  // s_j of the ghosts
   std::fill(K.values.begin(), K.values.end(), 0.0);
   // over several ranks the own rows only (their members' terms are the halo's)
 #pragma omp parallel for schedule(static)

@@ -70,7 +70,8 @@ class Model {
   // Dilatation θ_i of each particle at positions y (N values), the one the forces at y use;
   // over several ranks (distribute()) of this rank's rows only, the other values untouched.
   virtual void dilatation(const double* y, double* theta) const = 0;
-  // Gershgorin bound on the stable explicit step at the reference state (notes §4).
+  // Gershgorin bound on the stable explicit step at the reference state (notes §4); over several
+  // ranks the same value on every rank (collective).
   virtual double stable_time_step() const = 0;
   // Removes bond b of row i for good (fracture): it carries no force and stores no energy.
   // The same bond in the other row (Families::reverse) is removed by its own call; calls for
@@ -107,10 +108,10 @@ class Model {
   // (halo.begin() to halo.end()): they read the positions of those rows and of the halo's
   // ghosts, write those rows of f, and forces_and_energy() returns this rank's share of Π;
   // whatever a row needs from a ghost's row comes through the halo (issue 18; docs/mpi.md).
-  // The halo must outlive the model. dilatation() evaluates the own rows too. Other evaluations
-  // still evaluate every row, from whatever positions they are given, and break_bond() changes
-  // only the row it names. A model that cannot be distributed throws std::invalid_argument
-  // saying why.
+  // The halo must outlive the model. dilatation() and energy_density() evaluate the own rows
+  // too (elastic_energy() is then this rank's share), and so does the stiffness
+  // (stiffness.hpp); rows_energy() evaluates the rows it is given. break_bond() changes only the
+  // row it names. A model that cannot be distributed throws std::invalid_argument saying why.
   virtual void distribute(const Halo& halo);
 
  protected:
