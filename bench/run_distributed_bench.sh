@@ -6,8 +6,8 @@
 # (its checks and energy ledger reduced over the ranks each step, frames at the start and end):
 # seconds per step and peak memory per rank from summary.json. Last, implicit steps over the
 # ranks: the same bar at λ = 0.02 (about 4,200 particles per rank), petsc_newton's Newmark at
-# 0.5 ms (8.5× the explicit limit) for 10 steps, with the majoriser's factor (auto's choice over
-# ranks: CHOLMOD on one rank, MUMPS's parallel Cholesky on several) and the nearest members'.
+# 0.5 ms (8.5× the explicit limit) for 10 steps, with GAMG (auto's choice over ranks), the
+# majoriser's factor and the nearest members' (CHOLMOD on one rank, MUMPS's on several).
 #   bench/run_distributed_bench.sh [particles_per_rank=20000] [steps=50]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,7 +28,7 @@ round(s['seconds_per_step'], 5), 'peak_rss_mb_per_rank', round(s['peak_rss_mb'])
   rm -rf "$out"
 done
 echo "== fissure run with petsc_newton (Newmark, dt 0.5 ms, 10 steps), about 4,200 particles per rank"
-for preconditioner in majoriser nearest; do
+for preconditioner in gamg majoriser nearest; do
   for ranks in 1 2 3 4; do
     length=$(awk -v r="$ranks" 'BEGIN { print 5000 * r / 1.85e4 }')
     out=$(mktemp -d)

@@ -112,8 +112,8 @@ void Simulation::distribute() {
                                  "ranks were started); velocity_verlet, symplectic_euler, "
                                  "arkode (its implicit and IMEX methods with "
                                  "integrator.preconditioner auto or nearest) and petsc_newton "
-                                 "(with integrator.preconditioner auto, majoriser or nearest) "
-                                 "can (docs/mpi.md)",
+                                 "(with integrator.preconditioner auto, majoriser, nearest or "
+                                 "gamg) can (docs/mpi.md)",
                                  type, ranks_->size()));
   }
   try {

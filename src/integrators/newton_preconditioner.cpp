@@ -45,10 +45,9 @@ bool NewtonPreconditioner::distributable(Kind kind, NewtonSystem::Tangent tangen
   switch (kind) {
     case Kind::majoriser:
     case Kind::nearest:
+    case Kind::gamg:
     case Kind::automatic:
       return true;
-    case Kind::gamg:  // hung on 3 ranks (choose_preconditioner): refused until understood
-      return false;
     case Kind::tangent:  // the two-hop tangent, unless the tangent is the majoriser
       return tangent == NewtonSystem::Tangent::majoriser;
     case Kind::scalar:  // its N×N matrix is applied per component: not written for ranks yet
@@ -89,13 +88,10 @@ PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& famili
   // particles (nearest's factor: 34 / 30 / 73), 1.9 GB at 95,187.
   const std::size_t particles = families.offsets.size() - 1;
   using P = PetscNewtonSettings::Preconditioner;
-  // Over several ranks the two-hop rows reach beyond the halo: the nearest members' factor
-  // (MUMPS), whose CG iterations stay flat as the scene grows with the ranks and which costs
-  // less than the majoriser's (bench/run_distributed_bench.sh, 4,215 particles per rank, 1 → 2
-  // ranks: 0.386 → 0.664 s per step against 0.367 → 1.14 s). GAMG scaled better still (0.260 →
-  // 0.295 s) but hung on 3 ranks in a run that wrote checkpoints, not yet understood: it is
-  // refused there (docs/mpi.md).
-  if (distributed) return P::nearest;
+  // Over several ranks the two-hop rows reach beyond the halo, and GAMG scales best
+  // (bench/run_distributed_bench.sh, 4,215 particles per rank, 1 → 2 ranks: 0.260 → 0.295 s per
+  // step, the nearest members' factor 0.386 → 0.664 s, the majoriser's 0.367 → 1.14 s).
+  if (distributed) return P::gamg;
   return particles <= 10000 ? P::tangent : P::gamg;
 }
 

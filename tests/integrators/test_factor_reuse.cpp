@@ -249,9 +249,9 @@ TEST(FactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndGamgAbove) {
   EXPECT_EQ(choose_preconditioner(families_of(10000)), P::tangent);
   EXPECT_EQ(choose_preconditioner(families_of(10001)), P::gamg);
   EXPECT_EQ(choose_preconditioner(families_of(95187)), P::gamg);
-  // over several ranks the two-hop rows reach past the halo: the nearest members' at any size
-  EXPECT_EQ(choose_preconditioner(families_of(857), true), P::nearest);
-  EXPECT_EQ(choose_preconditioner(families_of(95187), true), P::nearest);
+  // over several ranks the two-hop rows reach past the halo, and GAMG scales: GAMG at any size
+  EXPECT_EQ(choose_preconditioner(families_of(857), true), P::gamg);
+  EXPECT_EQ(choose_preconditioner(families_of(95187), true), P::gamg);
 }
 
 // The factor kept in single precision (the default) against double: the Newton or Krylov

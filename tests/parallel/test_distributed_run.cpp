@@ -99,7 +99,7 @@ TEST(DistributedRun, LoadsThatReadOtherParticlesSaySo) {
   const Halo halo = test::split_halo(scene);
   EXPECT_EQ(test::refusal([&] { dynamics.distribute(halo); }),
             "contact.self cannot run over several ranks yet (docs/mpi.md)");
-  EXPECT_TRUE(make_integrator("petsc_newton", "test")->distributable());  // auto: nearest
+  EXPECT_TRUE(make_integrator("petsc_newton", "test")->distributable());  // auto: gamg
 }
 
 }  // namespace
