@@ -4,11 +4,13 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "model/model.hpp"
 #include "parallel/halo.hpp"
 #include "parallel/ownership.hpp"
 #include "support/scenes.hpp"
@@ -60,6 +62,27 @@ inline std::vector<double> known_positions(const std::vector<double>& y, const H
             known.begin() + 3 * halo.begin());
   halo.fill(known.data(), 3);
   return known;
+}
+
+// A general deformation of the slab plus a different small displacement on every particle.
+inline std::vector<double> perturbed(const Particles& p) {
+  const double F[9] = {1.02, 0.03, -0.01, 0.01, 0.97, 0.02, -0.02, 0.01, 1.01};
+  std::vector<double> y = deform(p, F);
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] += 1e-4 * std::sin(12.9898 * double(k));
+  return y;
+}
+
+// Every bond of rows [first, end) crossing x = 0.15 below mid-height (a crack across the
+// ranks' cuts).
+inline void break_crack_bonds(const Scene& scene, Model& model, int first, int end) {
+  const auto& x = scene.particles.reference;
+  const Families& f = scene.families;
+  for (int i = first; i < end; ++i)
+    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+      const int j = f.neighbors[b];
+      if ((x[3 * i] - 0.15) * (x[3 * j] - 0.15) < 0 && x[3 * i + 1] + x[3 * j + 1] < 0.1)
+        model.break_bond(i, b);
+    }
 }
 
 // The message of the std::invalid_argument `call` throws, or "" if it returns: what a part that

@@ -17,26 +17,6 @@
 namespace fissure {
 namespace {
 
-// A general deformation plus a different small displacement on every particle.
-std::vector<double> perturbed(const Particles& p) {
-  const double F[9] = {1.02, 0.03, -0.01, 0.01, 0.97, 0.02, -0.02, 0.01, 1.01};
-  std::vector<double> y = test::deform(p, F);
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] += 1e-4 * std::sin(12.9898 * double(k));
-  return y;
-}
-
-// Every bond crossing x = 0.15 below mid-height (a pre-crack across the ranks' cuts).
-void break_crack_bonds(const Scene& scene, Model& model) {
-  const auto& x = scene.particles.reference;
-  const Families& f = scene.families;
-  for (int i = 0; i < scene.particles.count(); ++i)
-    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
-      const int j = f.neighbors[b];
-      if ((x[3 * i] - 0.15) * (x[3 * j] - 0.15) < 0 && x[3 * i + 1] + x[3 * j + 1] < 0.1)
-        model.break_bond(i, b);
-    }
-}
-
 struct Case {
   std::string name, material;
   bool cracked;
@@ -50,12 +30,12 @@ TEST(DistributedForces, EqualOneRankBitwise) {
     SCOPED_TRACE(c.name);
     const Scene scene = test::slab(c.material);
     const int n = scene.particles.count();
-    const std::vector<double> y = perturbed(scene.particles);
+    const std::vector<double> y = test::perturbed(scene.particles);
     auto whole = make_model(scene);
     auto part = make_model(scene);
     if (c.cracked) {
-      break_crack_bonds(scene, *whole);
-      break_crack_bonds(scene, *part);
+      test::break_crack_bonds(scene, *whole, 0, scene.particles.count());
+      test::break_crack_bonds(scene, *part, 0, scene.particles.count());
     }
     std::vector<double> expected(3 * std::size_t(n));
     const double energy = whole->forces_and_energy(y.data(), expected.data());

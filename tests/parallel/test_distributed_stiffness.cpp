@@ -23,40 +23,19 @@
 namespace fissure {
 namespace {
 
-// A general deformation plus a different small displacement on every particle.
-std::vector<double> perturbed(const Particles& p) {
-  const double F[9] = {1.03, 0.02, -0.01, 0.01, 0.96, 0.02, -0.02, 0.01, 1.02};
-  std::vector<double> y = test::deform(p, F);
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] += 1e-4 * std::sin(7.31 * double(k));
-  return y;
-}
-
-// Every bond of rows [first, end) crossing x = 0.15 below mid-height (a crack across the ranks'
-// cuts).
-void break_crack_bonds(const Scene& scene, Model& model, int first, int end) {
-  const auto& x = scene.particles.reference;
-  const Families& f = scene.families;
-  for (int i = first; i < end; ++i)
-    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
-      const int j = f.neighbors[b];
-      if ((x[3 * i] - 0.15) * (x[3 * j] - 0.15) < 0 && x[3 * i + 1] + x[3 * j + 1] < 0.1)
-        model.break_bond(i, b);
-    }
-}
-
 TEST(DistributedStiffness, TangentProductMajoriserAndNearestRowsEqualOneRankBitwise) {
   for (const bool cracked : {false, true}) {
     SCOPED_TRACE(cracked ? "cracked, each rank its own rows" : "intact");
     const Scene scene = test::slab();
-    const std::vector<double> y = perturbed(scene.particles);
+    const std::vector<double> y = test::perturbed(scene.particles);
     std::vector<double> v(y.size());
     for (std::size_t k = 0; k < v.size(); ++k) v[k] = std::cos(3.7 * double(k));
     auto whole = make_model(scene);
     auto part = make_model(scene);
     const Halo halo = test::split_halo(scene);
     if (cracked) {
-      break_crack_bonds(scene, *whole, 0, scene.particles.count());
-      break_crack_bonds(scene, *part, halo.begin(), halo.end());
+      test::break_crack_bonds(scene, *whole, 0, scene.particles.count());
+      test::break_crack_bonds(scene, *part, halo.begin(), halo.end());
     }
     Stiffness& K = *whole->stiffness();
     std::vector<double> expected(y.size());
