@@ -78,9 +78,7 @@ void RunRanks::sum(std::vector<double>& values) const {
 }
 
 double RunRanks::sum(double value) const {
-  std::vector<double> values = {value};
-  sum(values);
-  return values[0];
+  return distributed() ? sum_over_ranks(comm_, value) : value;
 }
 
 double RunRanks::max(double value) const {

@@ -70,10 +70,7 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
 }
 
 double ReducedNewtonSystem::sum(double value) const {
-  if (!distributed()) return value;
-  std::vector<double> values = {value};
-  sum_over_ranks(dynamics_.halo()->comm(), values);
-  return values[0];
+  return distributed() ? sum_over_ranks(dynamics_.halo()->comm(), value) : value;
 }
 
 void ReducedNewtonSystem::extract_block() {
@@ -216,14 +213,14 @@ void ReducedNewtonSystem::reduced_rhs(const double* b, double gamma, bool matrix
   const double* by = b;
   const double* bv = b + count_;
   const double c = dynamics_.damping();
-  int any_held = 0;
+  bool any_held = false;
   for (std::size_t k = 0; k < count_; ++k) {
     const std::size_t u = first_ + k;
     held_step_[u] = fixed_[u] ? by[k] + gamma * bv[k] : 0.0;
     any_held = any_held || (fixed_[u] && held_step_[u] != 0);
   }
   // the coupling's product is collective, and reads the ghosts' held steps
-  if (distributed()) any_held = -min_over_ranks(dynamics_.halo()->comm(), -any_held);
+  if (distributed()) any_held = any_over_ranks(dynamics_.halo()->comm(), any_held);
   if (any_held) dynamics_.share(held_step_.data());
   if (any_held && matrix_free) {
     dynamics_.model().stiffness()->apply_tangent(held_step_.data(), coupling_.data());

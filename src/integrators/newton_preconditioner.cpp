@@ -310,10 +310,9 @@ void NewtonPreconditioner::refresh(const double* z) {
   set_blas_threads(1);
   PCFailedReason reason = PC_NOERROR;
   if (code == 0) petsc_check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
-  int failed = code != 0 || reason != PC_NOERROR;
+  bool failed = code != 0 || reason != PC_NOERROR;
   // every rank takes the same way (MUMPS reports a global status; other solvers may not)
-  if (system_.distributed())
-    failed = -min_over_ranks(system_.dynamics().halo()->comm(), -failed);
+  if (system_.distributed()) failed = any_over_ranks(system_.dynamics().halo()->comm(), failed);
   if (failed) {
     // CHOLMOD leaves a failed supernodal factor that it cannot refactorize ("cannot operate on
     // supernodal L"): without a reset every later refresh, the projected tangent's included,

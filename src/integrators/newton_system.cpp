@@ -54,10 +54,7 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
 }
 
 double NewtonSystem::sum_over_ranks(double value) const {
-  if (!distributed()) return value;
-  std::vector<double> values = {value};
-  fissure::sum_over_ranks(dynamics_.halo()->comm(), values);
-  return values[0];
+  return distributed() ? fissure::sum_over_ranks(dynamics_.halo()->comm(), value) : value;
 }
 
 void NewtonSystem::evaluate(const double* z, long& passes) {

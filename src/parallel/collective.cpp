@@ -93,6 +93,18 @@ void sum_over_ranks(MPI_Comm comm, std::vector<double>& values) {
   }
 }
 
+double sum_over_ranks(MPI_Comm comm, double value) {
+  std::vector<double> values = {value};
+  sum_over_ranks(comm, values);
+  return values[0];
+}
+
+bool any_over_ranks(MPI_Comm comm, bool value) {
+  int mine = value, any = mine;
+  check(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
+  return any != 0;
+}
+
 double max_over_ranks(MPI_Comm comm, double value) {
   double largest = value;
   check(MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, comm), "MPI_Allreduce");

@@ -40,6 +40,9 @@ std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& bo
 // Each entry summed over the ranks in rank order, the same bits on every rank whatever the MPI
 // library's reduction order. Collective.
 void sum_over_ranks(MPI_Comm comm, std::vector<double>& values);
+double sum_over_ranks(MPI_Comm comm, double value);
+// Whether `value` holds on some rank (every rank gets the same answer). Collective.
+bool any_over_ranks(MPI_Comm comm, bool value);
 double max_over_ranks(MPI_Comm comm, double value);
 int min_over_ranks(MPI_Comm comm, int value);
 
