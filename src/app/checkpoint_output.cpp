@@ -27,17 +27,23 @@ void CheckpointOutput::after_step(const RunParts& run, const Step&) {
 
 namespace {
 
-// Over several ranks each rank knows its own rows: the per-particle arrays of the model and the
-// integrator (theirs with a whole number of values per particle) are gathered on the root; the
+// Over several ranks each rank knows its own rows: the model's per-bond arrays (the plastic
+// extensions) are gathered on the root by the rows' bonds, and the per-particle arrays of the
+// model and the integrator (theirs with a whole number of values per particle) by the rows; the
 // rest (the other parts' arrays, and counters such as petsc_newton's load increments) is the
 // same on every rank.
-NamedArrays gathered(const RunRanks& ranks, NamedArrays part, int particles) {
+NamedArrays gathered(const RunParts& run, NamedArrays part) {
+  const RunRanks& ranks = run.ranks;
   if (!ranks.distributed()) return part;
+  const std::size_t particles = run.scene.particles.count();
   for (auto& [name, values] : part) {
+    if (run.model.per_bond_state(name)) {
+      values = ranks.gather_bonds(values);
+      continue;
+    }
     const bool per_particle = (name.rfind("model.", 0) == 0 || name.rfind("integrator.", 0) == 0) &&
                               !values.empty() && values.size() % particles == 0;
-    if (!per_particle) continue;
-    values = ranks.gather(values, static_cast<int>(values.size() / particles));
+    if (per_particle) values = ranks.gather(values, static_cast<int>(values.size() / particles));
   }
   return part;
 }
@@ -46,15 +52,14 @@ NamedArrays gathered(const RunRanks& ranks, NamedArrays part, int particles) {
 
 void CheckpointOutput::write(const RunParts& run) const {
   const RunRanks& ranks = run.ranks;
-  const int n = run.scene.particles.count();
   // in the global numbering, whatever the number of ranks, so a run resumes on any number
   const std::vector<double> position = ranks.gather(run.state.position, 3);
   const std::vector<double> velocity = ranks.gather(run.state.velocity, 3);
   const std::vector<std::uint8_t> broken = ranks.gather_bonds(run.post_step.broken());
   NamedArrays parts;
   for (const NamedArrays& part :
-       {gathered(ranks, run.post_step.saved_state(), n), run.dynamics.saved_state(),
-        gathered(ranks, run.integrator.saved_state(), n)})
+       {gathered(run, run.post_step.saved_state()), run.dynamics.saved_state(),
+        gathered(run, run.integrator.saved_state())})
     for (const auto& array : part) parts.push_back(array);
   ranks.write([&] {
     if (!ranks.root()) return;

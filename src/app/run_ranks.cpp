@@ -98,6 +98,11 @@ std::vector<std::uint8_t> RunRanks::gather_bonds(const std::vector<std::uint8_t>
   return gather_owned(comm_, bond_boundaries_, values.data(), 1);
 }
 
+std::vector<double> RunRanks::gather_bonds(const std::vector<double>& values) const {
+  if (!distributed() || values.empty()) return values;
+  return gather_owned(comm_, bond_boundaries_, values.data(), 1);
+}
+
 void RunRanks::agree(const std::function<void()>& work) const {
   if (!distributed()) return work();
   fissure::agree(comm_, work);

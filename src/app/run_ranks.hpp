@@ -51,6 +51,7 @@ class RunRanks {
   std::unique_ptr<IndexExchange> to_root(const std::vector<int>& particles) const;
   // A per-bond array (CSR order), whole on the root; empty stays empty. Collective.
   std::vector<std::uint8_t> gather_bonds(const std::vector<std::uint8_t>& values) const;
+  std::vector<double> gather_bonds(const std::vector<double>& values) const;
   // Rank-local work that makes no collective call: an exception it raises on any rank is
   // raised on every rank (parallel/collective.hpp, agree()). Collective.
   void agree(const std::function<void()>& work) const;

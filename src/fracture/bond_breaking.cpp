@@ -236,11 +236,11 @@ std::size_t BondBreaking::found(std::size_t exceeded) {
         changing_.push_back(families_.neighbors[b]);
   }
   // the rows sharing a pair with a ghost's row whose criterion was exceeded there
-  if (reverse_exceeded_) {
-    reverse_exceeded_->fill(exceeded_.data(), 1);
-    for (std::size_t k = 0; k < shared_bonds_.size(); ++k)
-      if (exceeded_[families_.reverse[shared_bonds_[k]]]) {
-        changing_.push_back(shared_rows_[k]);
+  if (shared_.reverses) {
+    shared_.reverses->fill(exceeded_.data(), 1);
+    for (std::size_t k = 0; k < shared_.bonds.size(); ++k)
+      if (exceeded_[families_.reverse[shared_.bonds[k]]]) {
+        changing_.push_back(shared_.rows[k]);
         ++exceeded;  // apply() must run here even where no own row exceeded its criterion
       }
   }
@@ -276,7 +276,7 @@ std::size_t BondBreaking::apply() {
   std::sort(changed_.begin(), changed_.end());
   for (const int i : exceeding_)
     std::fill(exceeded_.begin() + off[i], exceeded_.begin() + off[i + 1], std::uint8_t{0});
-  for (const int b : shared_bonds_) exceeded_[families_.reverse[b]] = 0;
+  for (const int b : shared_.bonds) exceeded_[families_.reverse[b]] = 0;
   exceeding_.clear();
   broken_pairs_ += removed / 2;
   if (!halo_) return removed / 2;
@@ -309,23 +309,7 @@ void BondBreaking::distribute(const Halo& halo) {
   halo_ = &halo;
   row_begin_ = halo.begin();
   row_end_ = halo.end();
-  // Bond b of an owned row pairs with bond reverse[b] of row j: owned by j's rank, whose bonds
-  // are the CSR range of its rows.
-  shared_bonds_.clear();
-  shared_rows_.clear();
-  std::vector<int> reverses;
-  for (int i = row_begin_; i < row_end_; ++i)
-    for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b)
-      if (!owned(families_.neighbors[b])) {
-        shared_bonds_.push_back(b);
-        shared_rows_.push_back(i);
-        reverses.push_back(families_.reverse[b]);
-      }
-  std::sort(reverses.begin(), reverses.end());
-  std::vector<int> bond_boundaries;
-  for (const int row : halo.boundaries()) bond_boundaries.push_back(families_.offsets[row]);
-  reverse_exceeded_ =
-      std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries), std::move(reverses));
+  shared_ = share_bonds(halo, families_);
   full_check_due_ = true;
   std::size_t total = 0;
   for (int i = row_begin_; i < row_end_; ++i)

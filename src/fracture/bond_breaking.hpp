@@ -93,8 +93,7 @@ class BondBreaking {
   // ghosts' rows that pair with its own, and those own bonds.
   int row_begin_ = 0, row_end_ = 0;
   const Halo* halo_ = nullptr;
-  std::unique_ptr<IndexExchange> reverse_exceeded_;
-  std::vector<int> shared_bonds_, shared_rows_;  // an own bond to a ghost, and its row
+  SharedBonds shared_;  // the pairs shared with other ranks, for exceeded_ (distribute())
 };
 
 }  // namespace fissure

@@ -19,10 +19,15 @@ PostStep::PostStep(const Scene& scene, Model& model, bool measure_energy)
 
 bool PostStep::run(const double* y, const double* velocity, double dt) {
   ++calls_;
+  // a rank's share of an energy change, summed over the ranks when distributed (collective)
+  const auto over_ranks = [&](double share) {
+    return halo_ ? sum_over_ranks(halo_->comm(), share) : share;
+  };
   if (PlasticFlow* plastic_flow = model_.plastic_flow()) {
     const double stored = measure_energy_ ? model_.elastic_energy(y) : 0;
+    // yielded over all ranks (LpsModel::distribute)
     if (plastic_flow->update_plasticity(y) > 0 && measure_energy_)
-      released_.plastic += stored - model_.elastic_energy(y);
+      released_.plastic += over_ranks(stored - model_.elastic_energy(y));
   }
   bool changed = false;
   if (bond_breaking_) {
@@ -32,13 +37,8 @@ bool PostStep::run(const double* y, const double* velocity, double dt) {
     const bool measure = measure_energy_ && found;
     const double before = measure ? model_.rows_energy(y, rows) : 0;
     changed = bond_breaking_->apply() > 0;  // over all ranks (BondBreaking::distribute)
-    double released = measure ? before - model_.rows_energy(y, rows) : 0;
-    if (halo_ && changed && measure_energy_) {
-      std::vector<double> total = {released};
-      sum_over_ranks(halo_->comm(), total);
-      released = total[0];
-    }
-    released_.fracture += released;
+    const double released = measure ? before - model_.rows_energy(y, rows) : 0;
+    if (changed && measure_energy_) released_.fracture += over_ranks(released);
   }
   if (embedded_mesh_) {
     if (changed) embedded_mesh_->crack(bond_breaking_->broken(), bond_breaking_->changed());

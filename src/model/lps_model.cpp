@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
+#include "parallel/collective.hpp"
 #include "parallel/halo.hpp"
 #include "scene/scene.hpp"
 
@@ -261,14 +262,12 @@ double LpsModel::forces_and_energy(const double* y, double* f) {
 }
 
 void LpsModel::distribute(const Halo& halo) {
-  if (plastic_)
-    throw std::invalid_argument(
-        "material.plasticity cannot be evaluated over several ranks yet (docs/mpi.md)");
   if (halo.end() > particles_.count() || halo.begin() > halo.end())
     throw std::invalid_argument("the halo's rows are not this scene's");
   halo_ = &halo;
   row_begin_ = halo.begin();
   row_end_ = halo.end();
+  if (plastic_) shared_ = share_bonds(halo, families_);
 }
 
 // θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped), summed as compute_dilatation sums it.
@@ -337,7 +336,6 @@ double LpsModel::rows_energy(const double* y, const std::vector<int>& rows) {
 // on the extensions kept from that sum, then the row's θ^p_i and force terms at y with the new
 // e^p, so the next evaluation at y (the next step's first) starts from them.
 std::size_t LpsModel::update_plasticity(const double* y) {
-  const int n = particles_.count();
   const int* off = families_.offsets.data();
   const int* nbr = families_.neighbors.data();
   const double* xi = families_.reference_length.data();
@@ -352,7 +350,7 @@ std::size_t LpsModel::update_plasticity(const double* y) {
   {
     std::vector<double> row_extension;  // e_ij of the row, reused by every row of this thread
 #pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i) {
+    for (int i = row_begin_; i < row_end_; ++i) {
       const int first = off[i], count = off[i + 1] - first;
       if (static_cast<int>(row_extension.size()) < count) row_extension.resize(count);
       const lps::BondRow row = bond_row(i);
@@ -401,9 +399,28 @@ std::size_t LpsModel::update_plasticity(const double* y) {
       set_terms(i, theta, theta - plastic_theta, moment);  // compute_dilatation<true>'s, new e^p
     }
   }
+  if (halo_) yielded = share_plastic_extensions(yielded);
   if (yielded > 0) mark_changed();
   remember_plastic_terms(y);
   return yielded;
+}
+
+// Over several ranks, after the own rows' return map: the bonds yielded on all ranks (so that
+// every rank marks the same change), and where some did, each shared pair's e^p_ji from row j's
+// rank into plastic_extension_'s entry of the reverse bond (which the stiffness reads) and row
+// i's copy, flagging the row as the return map of row j flags it on one rank. Collective.
+std::size_t LpsModel::share_plastic_extensions(std::size_t yielded) {
+  const std::size_t total =
+      static_cast<std::size_t>(sum_over_ranks(halo_->comm(), static_cast<double>(yielded)));
+  if (total == 0) return 0;
+  shared_.reverses->fill(plastic_extension_.data(), 1);
+  for (std::size_t k = 0; k < shared_.bonds.size(); ++k) {
+    const int b = shared_.bonds[k];
+    const double ep = plastic_extension_[families_.reverse[b]];
+    reverse_plastic_extension_[b] = ep;
+    if (ep != 0 || std::signbit(ep)) plastic_row_[shared_.rows[k]] = 1;
+  }
+  return total;
 }
 
 NamedArrays LpsModel::saved_state() const {

@@ -15,6 +15,7 @@
 #include "model/model_registry.hpp"
 #include "model/plastic_flow.hpp"
 #include "model/stiffness.hpp"
+#include "parallel/halo.hpp"
 #include "scene/config.hpp"
 
 namespace fissure {
@@ -40,6 +41,9 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   const std::vector<double>& plastic_extension() const override { return plastic_extension_; }
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;
+  bool per_bond_state(const std::string& name) const override {
+    return name == "model.plastic_extension";
+  }
   void assemble_majoriser(const double* y, SparseSymmetric& K) override;
   void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;
   void assemble_nearest_stiffness(const double* y, const std::vector<char>& kept,
@@ -126,6 +130,10 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // pass reads e^p only there, elsewhere both are +0 and the elastic terms are the same bits.
   std::vector<std::uint8_t> plastic_row_;
   std::vector<double> plastic_dilatation_;   // θ^p_i = Σ_j c_ij e^p_ij V_j
+  // Over several ranks: the pairs shared with other ranks, whose e^p_ji the return map brings
+  // from row j's rank (share_plastic_extensions()).
+  SharedBonds shared_;
+  std::size_t share_plastic_extensions(std::size_t yielded);
   std::vector<double> yield_force_;          // A^c_i = √(2Ψ0) (Eq 14)
   std::vector<double> max_plastic_stretch_;  // γ / |ξ| (Eq 16, Table 1)
   std::vector<double> energy_;               // V_i W_i, scratch of forces_and_energy

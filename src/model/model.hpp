@@ -83,6 +83,9 @@ class Model {
   // its restoration after the broken bonds have been replayed through break_bond().
   virtual NamedArrays saved_state() const { return {}; }
   virtual void restore_state(const NamedArrays&) {}
+  // Whether saved_state()'s array `name` holds one value per directed bond (CSR order), not
+  // per particle: over several ranks a checkpoint gathers it by the rows' bonds.
+  virtual bool per_bond_state(const std::string&) const { return false; }
   // Optional capabilities, nullptr where the model has none: its stiffness for implicit
   // integrators (model/stiffness.hpp) and its plastic flow (model/plastic_flow.hpp, only when
   // the scene asks for plasticity).

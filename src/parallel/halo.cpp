@@ -28,4 +28,25 @@ std::vector<int> ghosts_of(const Families& families, const std::vector<int>& bou
 Halo::Halo(MPI_Comm comm, const Families& families, std::vector<int> boundaries)
     : exchange_(comm, boundaries, ghosts_of(families, boundaries, comm)) {}
 
+// A rank's bonds are the CSR range of its rows: bond b of row i pairs with bond reverse[b] of
+// row j, in the range of j's rank.
+SharedBonds share_bonds(const Halo& halo, const Families& families) {
+  SharedBonds shared;
+  std::vector<int> reverses;
+  for (int i = halo.begin(); i < halo.end(); ++i)
+    for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
+      const int j = families.neighbors[b];
+      if (j >= halo.begin() && j < halo.end()) continue;
+      shared.bonds.push_back(b);
+      shared.rows.push_back(i);
+      reverses.push_back(families.reverse[b]);
+    }
+  std::sort(reverses.begin(), reverses.end());
+  std::vector<int> bond_boundaries;
+  for (const int row : halo.boundaries()) bond_boundaries.push_back(families.offsets[row]);
+  shared.reverses =
+      std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries), std::move(reverses));
+  return shared;
+}
+
 }  // namespace fissure

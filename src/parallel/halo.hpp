@@ -5,6 +5,7 @@
 #include <mpi.h>
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "parallel/index_exchange.hpp"
@@ -34,5 +35,16 @@ class Halo {
  private:
   IndexExchange exchange_;
 };
+
+// The pairs a rank shares with other ranks (issue 18, item 1: the bond star forest): the bonds of
+// its rows whose other end is owned elsewhere, in CSR order, their rows, and the exchange that
+// copies, per bond array in CSR order, each such bond's reverse (families.reverse) from the rank
+// that owns it, into the same global entry here.
+struct SharedBonds {
+  std::vector<int> bonds, rows;
+  std::unique_ptr<IndexExchange> reverses;
+};
+// Collective over the halo's ranks.
+SharedBonds share_bonds(const Halo& halo, const Families& families);
 
 }  // namespace fissure
