@@ -16,6 +16,7 @@ void CholmodFactor::factorize(const SparseSymmetric& A) {
         A.rows, A.rows, static_cast<Eigen::Index>(A.values.size()), A.offsets.data(),
         A.columns.data(), A.values.data());
     factor_.analyzePattern(matrix_);
+    factor_nonzeros_ = factor_.cholmod().lnz;
     analyzed_ = true;
   }
   std::copy(A.values.begin(), A.values.end(), matrix_.valuePtr());

@@ -19,12 +19,16 @@ class CholmodFactor {
   // x = A⁻¹ b.
   void solve(const double* b, double* x) const;
   long factorizations() const { return factorizations_; }
+  // Nonzeros of L in the ordering CHOLMOD's analysis chose (its default strategy: AMD, and METIS
+  // where AMD's fill is high).
+  double factor_nonzeros() const { return factor_nonzeros_; }
 
  private:
   Eigen::SparseMatrix<double> matrix_;  // A's pattern; symmetric, so its rows are its columns
   Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> factor_;
   bool analyzed_ = false;
   long factorizations_ = 0;
+  double factor_nonzeros_ = 0;
 };
 
 }  // namespace fissure

@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "core/error.hpp"
+#include "linear/banded_ordering.hpp"
 #include "linear/blas_threads.hpp"
 
 namespace fissure {
@@ -85,7 +86,10 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = view.packed = true;
   if (!symbolic_) {
-    symbolic_ = cholmod_analyze(&view, &common_);
+    // CHOLMOD's default strategy with a banded candidate (banded_ordering.hpp): it tries that
+    // ordering and AMD, and METIS where AMD's fill is high, and keeps the one with the least work.
+    std::vector<int> candidate = reverse_cuthill_mckee(A);
+    symbolic_ = cholmod_analyze_p(&view, candidate.data(), nullptr, 0, &common_);
     check_cholmod(common_, "cholmod_analyze");
     if (!symbolic_) throw RunError("CHOLMOD: cholmod_analyze failed");
     if (!symbolic_->is_super)
@@ -297,45 +301,63 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
       for (long c = super_[k]; c < super_[k + 1]; ++c)
         for (int t = 0; t < threads_; ++t) y[c] += outside[t][c];
   // Above the subtrees the supernodes are taken one at a time, the rows of each rectangular
-  // block split over the threads (memory-bound: each thread streams its own rows).
+  // block split over the threads (memory-bound: each thread streams its own rows). One parallel
+  // region for all of them, a barrier between supernodes: a chain (a banded factor) has
+  // thousands of small supernodes, where a region per supernode cost more than its rows.
   std::vector<Real> partial(static_cast<std::size_t>(threads_) * widest);
-  for (long k : top_) {
-    const long c0 = super_[k], columns = super_[k + 1] - c0;
-    const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
-    const long lda = below + columns;
-    const Real* block = values.data() + value_start_[k];
-    lower_solve(CblasNoTrans, columns, block, lda, y.data() + c0);
-#pragma omp parallel for num_threads(threads_) \
-    schedule(static) if (below * columns >= kSplitEntries)
-    for (int t = 0; t < threads_; ++t) {
-      const long a = below * t / threads_, b = below * (t + 1) / threads_;
-      if (a == b) continue;
-      multiply(CblasNoTrans, b - a, columns, Real(1), block + columns + a, lda, y.data() + c0,
-               Real(0), tmp.data() + a);
-      for (long j = a; j < b; ++j) y[rows_[r0 + columns + j]] -= tmp[j];
+#pragma omp parallel num_threads(threads_) if (threads_ > 1 && !top_.empty())
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    for (long k : top_) {
+      const long c0 = super_[k], columns = super_[k + 1] - c0;
+      const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
+      const long lda = below + columns;
+      const Real* block = values.data() + value_start_[k];
+      const int split = below * columns >= kSplitEntries ? team : 1;
+      if (t == 0) lower_solve(CblasNoTrans, columns, block, lda, y.data() + c0);
+      if (team > 1) {
+#pragma omp barrier
+      }
+      if (t < split) {
+        const long a = below * t / split, b = below * (t + 1) / split;
+        if (a < b)
+          multiply(CblasNoTrans, b - a, columns, Real(1), block + columns + a, lda, y.data() + c0,
+                   Real(0), tmp.data() + a);
+        for (long j = a; j < b; ++j) y[rows_[r0 + columns + j]] -= tmp[j];
+      }
+      if (team > 1) {
+#pragma omp barrier
+      }
     }
-  }
-  for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
-    const long k = *it;
-    const long c0 = super_[k], columns = super_[k + 1] - c0;
-    const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
-    const long lda = below + columns;
-    const Real* block = values.data() + value_start_[k];
-#pragma omp parallel for num_threads(threads_) \
-    schedule(static) if (below * columns >= kSplitEntries)
-    for (int t = 0; t < threads_; ++t) {
-      const long a = below * t / threads_, b = below * (t + 1) / threads_;
-      Real* sum = partial.data() + static_cast<std::size_t>(t) * widest;
-      std::fill(sum, sum + columns, Real(0));
-      for (long j = a; j < b; ++j) tmp[j] = y[rows_[r0 + columns + j]];
-      if (a < b)
-        multiply(CblasTrans, b - a, columns, Real(1), block + columns + a, lda, tmp.data() + a,
-                 Real(0), sum);
+    for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
+      const long k = *it;
+      const long c0 = super_[k], columns = super_[k + 1] - c0;
+      const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
+      const long lda = below + columns;
+      const Real* block = values.data() + value_start_[k];
+      const int split = below * columns >= kSplitEntries ? team : 1;
+      if (t < split) {
+        const long a = below * t / split, b = below * (t + 1) / split;
+        Real* sum = partial.data() + static_cast<std::size_t>(t) * widest;
+        std::fill(sum, sum + columns, Real(0));
+        for (long j = a; j < b; ++j) tmp[j] = y[rows_[r0 + columns + j]];
+        if (a < b)
+          multiply(CblasTrans, b - a, columns, Real(1), block + columns + a, lda, tmp.data() + a,
+                   Real(0), sum);
+      }
+      if (team > 1) {
+#pragma omp barrier
+      }
+      if (t == 0) {
+        for (int u = 0; u < split; ++u)
+          for (long c = 0; c < columns; ++c)
+            y[c0 + c] -= partial[static_cast<std::size_t>(u) * widest + c];
+        lower_solve(CblasTrans, columns, block, lda, y.data() + c0);
+      }
+      if (team > 1) {
+#pragma omp barrier
+      }
     }
-    for (int t = 0; t < threads_; ++t)
-      for (long c = 0; c < columns; ++c)
-        y[c0 + c] -= partial[static_cast<std::size_t>(t) * widest + c];
-    lower_solve(CblasTrans, columns, block, lda, y.data() + c0);
   }
 #pragma omp parallel num_threads(threads_) if (threads_ > 1 && !subtree_first_.empty())
   {

@@ -30,6 +30,8 @@ class SupernodalCholesky {
 
   // Entries of L as stored (supernodes hold their dense blocks), and the bytes one solve reads.
   long factor_entries() const { return static_cast<long>(entries_); }
+  // Nonzeros of L in the ordering the analysis chose (without the supernodes' padding).
+  double factor_nonzeros() const { return common_.lnz; }
   double solve_bytes() const;
   // The work split chosen when the pattern was analysed (see below).
   int subtrees() const { return static_cast<int>(subtree_first_.size()); }

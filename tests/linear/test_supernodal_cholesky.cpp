@@ -16,26 +16,12 @@
 #include "model/model.hpp"
 #include "model/stiffness.hpp"
 #include "support/scenes.hpp"
+#include "support/stage_matrix.hpp"
 
 namespace fissure {
 namespace {
 
 using Precision = FactorPrecision;
-
-// The two-hop tangent of an elastic block at rest plus a mass shift, as an SDIRK stage at a few
-// hundred times the explicit step makes it.
-SparseSymmetric stage_matrix(const test::Block& block) {
-  const Scene scene = test::block_scene(block);
-  auto model = make_model(scene);
-  SparseSymmetric a = two_hop_pattern(scene.families);
-  model->stiffness()->assemble_tangent(scene.particles.reference.data(), a, false);
-  const double h = 300 * model->stable_time_step();
-  std::vector<double> mass;
-  for (double m : scene.particles.mass) mass.insert(mass.end(), 3, m);
-  const std::vector<char> fixed(mass.size(), 0);
-  shift_and_fix(a, diagonal_positions(a), mass, 16 / (h * h), fixed);
-  return a;
-}
 
 // The 5-point Laplacian of an n × n grid plus `shift` I, in `copies` disconnected copies: a
 // bushy elimination tree (and a forest for several copies).
@@ -101,11 +87,11 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  return {{"slender bar (a chain)", stage_matrix({.size = {0.6, 0.1, 0.1},
-                                                  .resolution = 0.05,
-                                                  .bulk = 3.3e10,
-                                                  .shear = 2.0e10,
-                                                  .density = 2200})},
+  return {{"slender bar (a chain)", test::stage_matrix({.size = {0.6, 0.1, 0.1},
+                                                        .resolution = 0.05,
+                                                        .bulk = 3.3e10,
+                                                        .shear = 2.0e10,
+                                                        .density = 2200})},
           {"grid (subtrees below shared supernodes)", grid_laplacian(60, 1e-3, 1)},
           {"two grids (a forest)", grid_laplacian(40, 1e-3, 2)}};
 }
