@@ -146,6 +146,20 @@ long differing_entries(const std::string& a, const std::string& b) {
   return count + (x.point_data.size() != y.point_data.size());
 }
 
+// Copies the run folder `from` into each of `copies` (on rank 0; every rank waits for it).
+void copy_run(const std::string& from, const std::vector<std::string>& copies) {
+  if (test::rank() == 0)
+    for (const std::string& copy : copies) fs::copy(from, copy, fs::copy_options::recursive);
+  MPI_Barrier(PETSC_COMM_WORLD);
+}
+
+// The energy ledger's entry `name` in a run's summary, NaN when it has none.
+double energy_entry(const RunSummary& s, const std::string& name) {
+  for (const auto& [entry, value] : s.energy)
+    if (entry == name) return value;
+  return std::nan("");
+}
+
 TEST(DistributedRunLoop, FramesEqualOneRankBitwise) {
   const std::string one = scratch("one"), all = scratch("all");
   const RunSummary reference = run_on(1, one);
@@ -192,11 +206,7 @@ TEST(DistributedRunLoop, DynamicColliderFeelsEveryRank) {
   const RunSummary spread = run_on(test::ranks(), all, nullptr, scene);
   if (test::rank() != 0) return;
   ASSERT_EQ(spread.status, "completed");
-  auto work = [](const RunSummary& s) {
-    for (const auto& [name, value] : s.energy)
-      if (name == "collider_work") return value;
-    return std::nan("");
-  };
+  auto work = [](const RunSummary& s) { return energy_entry(s, "collider_work"); };
   // the sphere pressed on the slab (its work in and out of the particles did not cancel)
   EXPECT_GT(std::abs(work(reference)), 1e-3);
   // the ledger's sums over the ranks: about 200 steps of round-off (1e-16 relative each)
@@ -213,10 +223,7 @@ TEST(DistributedRunLoop, CheckpointOfTwoRanksResumesOnOneAndOnThree) {
                     on_one = scratch("on_one"), on_more = scratch("on_more");
   run_on(1, whole);
   run_on(writers, written);
-  if (test::rank() == 0)
-    for (const std::string& copy : {on_one, on_more})
-      fs::copy(written, copy, fs::copy_options::recursive);
-  MPI_Barrier(PETSC_COMM_WORLD);
+  copy_run(written, {on_one, on_more});
   const CheckpointReader checkpoint_one(on_one + "/checkpoint.bin");
   const CheckpointReader checkpoint_more(on_more + "/checkpoint.bin");
   EXPECT_NEAR(checkpoint_one.number("run.time"), 0.6 * kEnd, kEnd / 50);
@@ -250,20 +257,13 @@ TEST(DistributedRunLoop, PlasticRunAndItsCheckpointEqualOneRankBitwise) {
   };
   const RunSummary reference = run_on(1, whole, nullptr, scene);
   const RunSummary all = run_on(test::ranks(), spread, nullptr, scene);
-  if (test::rank() == 0)
-    for (const std::string& copy : {on_one, on_fewer})
-      fs::copy(spread, copy, fs::copy_options::recursive);
-  MPI_Barrier(PETSC_COMM_WORLD);
+  copy_run(spread, {on_one, on_fewer});
   const CheckpointReader checkpoint_one(on_one + "/checkpoint.bin");
   const CheckpointReader checkpoint_fewer(on_fewer + "/checkpoint.bin");
   const RunSummary one = run_on(1, on_one, &checkpoint_one);
   const RunSummary resumed = fewer > 1 ? run_on(fewer, on_fewer, &checkpoint_fewer) : one;
   if (test::rank() != 0) return;
-  auto dissipated = [](const RunSummary& s) {
-    for (const auto& [name, value] : s.energy)
-      if (name == "plastic_dissipation") return value;
-    return std::nan("");
-  };
+  auto dissipated = [](const RunSummary& s) { return energy_entry(s, "plastic_dissipation"); };
   ASSERT_EQ(all.status, "completed");
   EXPECT_GT(dissipated(reference), 0.0);  // the slab yielded
   EXPECT_GT(reference.broken_bonds, 100);
