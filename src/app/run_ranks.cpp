@@ -44,21 +44,53 @@ int launched_ranks() {
 
 int launched_rank() { return from_environment("OMPI_COMM_WORLD_RANK", "PMI_RANK", 0); }
 
-RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.count()) {
+namespace {
+
+// comm, or for MPI_COMM_NULL the ranks mpirun started (PETSc initialised when there are
+// several), or MPI_COMM_NULL on one rank; its size and this rank.
+MPI_Comm run_comm(MPI_Comm comm, int& size, int& rank) {
+  size = 1;
+  rank = 0;
   if (comm == MPI_COMM_NULL) {
-    if (launched_ranks() == 1) return;
+    if (launched_ranks() == 1) return MPI_COMM_NULL;
     ensure_petsc();
     comm = PETSC_COMM_WORLD;
   }
-  check(MPI_Comm_size(comm, &size_), "MPI_Comm_size");
-  check(MPI_Comm_rank(comm, &rank_), "MPI_Comm_rank");
-  if (size_ == 1) return;
+  check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+  check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+  return size == 1 ? MPI_COMM_NULL : comm;
+}
+
+}  // namespace
+
+RowSplit RunRanks::split_over(MPI_Comm comm) {
+  int size = 1, rank = 0;
+  if (run_comm(comm, size, rank) == MPI_COMM_NULL) return {};
+  return {[size](const std::vector<int>& offsets) { return split_rows_by_bonds(offsets, size); },
+          rank};
+}
+
+RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.count()) {
+  comm = run_comm(comm, size_, rank_);
+  if (comm == MPI_COMM_NULL) {
+    if (!scene.boundaries.empty())
+      throw std::invalid_argument("RunRanks: the scene was split over ranks, but runs on one");
+    return;
+  }
   comm_ = comm;
-  const std::vector<int>& offsets = scene.families.offsets;
-  std::vector<int> boundaries = split_rows_by_bonds(offsets, size_);
+  const Families& families = scene.families;
+  std::vector<int> boundaries = scene.boundaries;
+  if (boundaries.empty())
+    boundaries = split_rows_by_bonds(families.offsets, size_);
+  else if (static_cast<int>(boundaries.size()) != size_ + 1 || scene.part != rank_)
+    throw std::invalid_argument(fmt::format(
+        "RunRanks: the scene was split for part {} of {}, not for rank {} of {}", scene.part,
+        boundaries.size() - 1, rank_, size_));
+  const std::vector<int>& offsets = families.whole() ? families.offsets : families.global_offsets;
   for (const int row : boundaries) bond_boundaries_.push_back(offsets[row]);
   begin_ = boundaries[rank_];
   end_ = boundaries[rank_ + 1];
+  first_bond_ = families.offsets[begin_];
   for (int i = begin_; i < end_; ++i) rows_.push_back(i);
   halo_ = std::make_unique<Halo>(comm, scene.families, std::move(boundaries));
 }
@@ -95,12 +127,12 @@ std::vector<double> RunRanks::gather(const std::vector<double>& values, int widt
 std::vector<std::uint8_t> RunRanks::gather_bonds(const std::vector<std::uint8_t>& values) const {
   // empty on every rank without fracture
   if (!distributed() || values.empty()) return values;
-  return gather_owned(comm_, bond_boundaries_, values.data(), 1);
+  return gather_owned_from(comm_, bond_boundaries_, values.data() + first_bond_, 1);
 }
 
 std::vector<double> RunRanks::gather_bonds(const std::vector<double>& values) const {
   if (!distributed() || values.empty()) return values;
-  return gather_owned(comm_, bond_boundaries_, values.data(), 1);
+  return gather_owned_from(comm_, bond_boundaries_, values.data() + first_bond_, 1);
 }
 
 void RunRanks::agree(const std::function<void()>& work) const {

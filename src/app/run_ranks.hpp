@@ -23,8 +23,12 @@ class RunRanks {
  public:
   // Over `comm`, or MPI_COMM_NULL for the ranks mpirun started (PETSC_COMM_WORLD, PETSc
   // initialised here when there are several). Several ranks split the scene's rows by bonds
-  // and build the halo. Collective.
+  // (as the scene was split, when build_scene was given split_over()) and build the halo.
+  // Collective.
   RunRanks(const Scene& scene, MPI_Comm comm);
+  // The split build_scene makes over the ranks of `comm` (as above), so that each rank keeps
+  // only its rows' families and its ghosts'; one rank: none.
+  static RowSplit split_over(MPI_Comm comm);
 
   bool distributed() const { return halo_ != nullptr; }
   int rank() const { return rank_; }
@@ -32,6 +36,8 @@ class RunRanks {
   // The rank that writes the run's shared files (summary.json, probes.csv, the PVD, the
   // checkpoint): rank 0.
   bool root() const { return rank_ == 0; }
+  // The ranks' communicator, when distributed().
+  MPI_Comm comm() const { return comm_; }
   int begin() const { return begin_; }
   int end() const { return end_; }
   // begin() to end(), listed (Model::rows_energy); empty on one rank.
@@ -64,6 +70,7 @@ class RunRanks {
   int rank_ = 0, size_ = 1, begin_ = 0, end_ = 0;
   std::vector<int> rows_;
   std::vector<int> bond_boundaries_;  // the first bond of each rank's rows, and the total
+  int first_bond_ = 0;                // this rank's first bond in its families' CSR
   std::unique_ptr<Halo> halo_;
 };
 

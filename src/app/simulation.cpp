@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 
 #include "app/checkpoint.hpp"
@@ -71,7 +72,8 @@ class Simulation {
 Simulation::Simulation(const Config& config, const RunOptions& options)
     : config_(config), options_(options), setup_start_(Clock::now()) {
   integrator_ = make_integrator(config.integrator, config.file);
-  scene_ = build_scene(config);
+  // over several ranks each keeps only its rows' families and its ghosts' (issue 18)
+  scene_ = build_scene(config, RunRanks::split_over(options.comm));
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);
   integrator_->check(*dynamics_);  // before the output folder is touched
@@ -82,7 +84,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   summary_.ranks = ranks_->size();
   summary_.integrator = config.integrator.type;
   summary_.particles = scene_.particles.count();
-  summary_.bonds = static_cast<long>(scene_.families.directed_bonds() / 2);
+  summary_.bonds = static_cast<long>(scene_.families.total_directed_bonds() / 2);
   summary_.stable_dt = model_->stable_time_step();
   summary_.model_statistics = model_->statistics();
   summary_.dt = run_time_step(config, *integrator_, summary_.stable_dt);
@@ -159,10 +161,15 @@ void Simulation::finish(RunEnd end) {
   summary_.wall_seconds = seconds_since(setup_start_);
   summary_.peak_rss_mb = ranks_->max(peak_rss_mb());
   if (ranks_->distributed()) {
-    // each rank's model knows its own rows' bonds: the root counts from all of them
-    const std::vector<std::uint8_t> broken = ranks_->gather_bonds(post_step_->broken());
-    summary_.broken_bonds = std::count(broken.begin(), broken.end(), 1) / 2;
-    summary_.fragments = ranks_->root() ? count_fragments(scene_.families, broken) : 0;
+    // each rank knows its own rows' bonds: their broken ones summed, their fragments joined
+    const std::vector<std::uint8_t> broken = post_step_->broken();
+    const Families& families = scene_.families;
+    double directed = 0;
+    if (!broken.empty())
+      for (int b = families.offsets[ranks_->begin()]; b < families.offsets[ranks_->end()]; ++b)
+        directed += broken[b];
+    summary_.broken_bonds = std::lround(ranks_->sum(directed)) / 2;
+    summary_.fragments = count_fragments(ranks_->comm(), families, broken);
   } else {
     summary_.broken_bonds = static_cast<long>(post_step_->broken_bonds());
     summary_.fragments = count_fragments(scene_.families, *model_);

@@ -54,7 +54,7 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
       for (const Crack& crack : scene.config.initial_cracks)
         if (crosses(crack, &p.reference[3 * i], &p.reference[3 * j])) {
           remove(i, b);
-          remove(j, families_.reverse[b]);
+          if (families_.reverse[b] >= 0) remove(j, families_.reverse[b]);  // row j kept here
           removed += 2;
           break;
         }
@@ -288,7 +288,8 @@ std::size_t BondBreaking::apply() {
   return total / 2;
 }
 
-void BondBreaking::restore(const std::vector<std::uint8_t>& broken) {
+void BondBreaking::restore(const std::vector<std::uint8_t>& whole_broken) {
+  const std::vector<std::uint8_t> broken = families_.localize(whole_broken);
   std::size_t total = 0;
   for (int i = row_begin_; i < row_end_; ++i) {
     for (int b = families_.offsets[i]; b < families_.offsets[i + 1]; ++b) {

@@ -40,8 +40,9 @@ class BondBreaking {
   // After find(), until the next: the rows apply() changes (those of the exceeded bonds and of
   // their partners), in increasing order; only their energy changes (Model::rows_energy).
   const std::vector<int>& rows_to_change() const { return changing_; }
-  // For checkpoints: breaks every bond `broken` marks (1 per directed bond) that is intact here,
-  // through the model, and recomputes the damage.
+  // For checkpoints: breaks every bond `broken` marks (1 per directed bond of the whole
+  // families, Families::localize) that is intact here, through the model, and recomputes the
+  // damage.
   void restore(const std::vector<std::uint8_t>& broken);
   // φ_i = 1 − n_i/N_i (Eq 19), N_i counted before the initial cracks.
   const std::vector<double>& damage() const { return damage_; }

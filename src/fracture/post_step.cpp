@@ -78,7 +78,7 @@ std::vector<std::uint8_t> PostStep::broken() const {
 void PostStep::restore_state(const Scene& scene, const NamedArrays& state,
                              const std::vector<std::uint8_t>& broken) {
   if (bond_breaking_) {
-    if (broken.size() != bond_breaking_->broken().size())
+    if (broken.size() != scene.families.total_directed_bonds())
       throw InputError("", "post_step.broken", "the checkpoint holds another number of bonds");
     bond_breaking_->restore(broken);
     if (embedded_mesh_)

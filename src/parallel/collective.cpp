@@ -47,8 +47,9 @@ void agree_on_error(MPI_Comm comm, std::exception_ptr error) {
 namespace {
 
 // gather_owned for entries of type T, `width` per row, sent as bytes.
+// `own`: this rank's first entry.
 template <class T>
-std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, const T* values,
+std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, const T* own,
                            int width) {
   if (boundaries.empty()) throw std::invalid_argument("gather_owned: no boundaries");
   const int rank = rank_in_split(comm, boundaries, boundaries.back(), "gather_owned");
@@ -60,7 +61,7 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, co
     displacements[r] = boundaries[r] * entry;
   }
   std::vector<T> gathered(rank == 0 ? static_cast<std::size_t>(boundaries.back()) * width : 0);
-  check(MPI_Gatherv(values + static_cast<std::size_t>(boundaries[rank]) * width, counts[rank],
+  check(MPI_Gatherv(own, counts[rank],
                     MPI_BYTE, gathered.data(), counts.data(), displacements.data(), MPI_BYTE, 0,
                     comm),
         "MPI_Gatherv");
@@ -69,14 +70,33 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, co
 
 }  // namespace
 
+// The first entry of this rank's range in an array of the global numbering.
+template <class T>
+const T* first_owned(MPI_Comm comm, const std::vector<int>& boundaries, const T* values,
+                     int width) {
+  if (boundaries.empty()) throw std::invalid_argument("gather_owned: no boundaries");
+  const int rank = rank_in_split(comm, boundaries, boundaries.back(), "gather_owned");
+  return values + static_cast<std::size_t>(boundaries[rank]) * width;
+}
+
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                  const double* values, int width) {
-  return gather_rows(comm, boundaries, values, width);
+  return gather_rows(comm, boundaries, first_owned(comm, boundaries, values, width), width);
 }
 
 std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                        const std::uint8_t* values, int width) {
-  return gather_rows(comm, boundaries, values, width);
+  return gather_rows(comm, boundaries, first_owned(comm, boundaries, values, width), width);
+}
+
+std::vector<double> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
+                                      const double* own, int width) {
+  return gather_rows(comm, boundaries, own, width);
+}
+
+std::vector<std::uint8_t> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
+                                            const std::uint8_t* own, int width) {
+  return gather_rows(comm, boundaries, own, width);
 }
 
 void sum_over_ranks(MPI_Comm comm, std::vector<double>& values) {

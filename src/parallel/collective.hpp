@@ -36,6 +36,12 @@ std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundari
 // The same for bytes (per-bond flags, with the rows' first bonds as the boundaries).
 std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                        const std::uint8_t* values, int width);
+// The same where this rank keeps its own entries elsewhere: `own` points at its first one (a
+// rank's bonds numbered in its own CSR, Families).
+std::vector<double> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
+                                      const double* own, int width);
+std::vector<std::uint8_t> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
+                                            const std::uint8_t* own, int width);
 
 // Each entry summed over the ranks in rank order, the same bits on every rank whatever the MPI
 // library's reduction order. Collective.

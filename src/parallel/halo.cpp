@@ -29,23 +29,33 @@ Halo::Halo(MPI_Comm comm, const Families& families, std::vector<int> boundaries)
     : exchange_(comm, boundaries, ghosts_of(families, boundaries, comm)) {}
 
 // A rank's bonds are the CSR range of its rows: bond b of row i pairs with bond reverse[b] of
-// row j, in the range of j's rank.
+// row j, in the range of j's rank. The forest numbers bonds as the whole families do; where this
+// rank keeps only some rows (Families), its own bonds start at offsets[begin] and each reverse
+// lands in its slot of the kept row j.
 SharedBonds share_bonds(const Halo& halo, const Families& families) {
   SharedBonds shared;
-  std::vector<int> reverses;
+  std::vector<std::pair<int, int>> reverses;  // whole families' index, slot here
   for (int i = halo.begin(); i < halo.end(); ++i)
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
       const int j = families.neighbors[b];
       if (j >= halo.begin() && j < halo.end()) continue;
       shared.bonds.push_back(b);
       shared.rows.push_back(i);
-      reverses.push_back(families.reverse[b]);
+      reverses.emplace_back(static_cast<int>(families.global_bond(j, families.reverse[b])),
+                            families.reverse[b]);
     }
   std::sort(reverses.begin(), reverses.end());
+  std::vector<int> needed, slots;
+  for (const auto& [global, slot] : reverses) {
+    needed.push_back(global);
+    slots.push_back(slot);
+  }
+  const std::vector<int>& whole = families.whole() ? families.offsets : families.global_offsets;
   std::vector<int> bond_boundaries;
-  for (const int row : halo.boundaries()) bond_boundaries.push_back(families.offsets[row]);
-  shared.reverses =
-      std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries), std::move(reverses));
+  for (const int row : halo.boundaries()) bond_boundaries.push_back(whole[row]);
+  shared.reverses = std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries),
+                                                    std::move(needed), std::move(slots),
+                                                    families.offsets[halo.begin()]);
   return shared;
 }
 

@@ -39,7 +39,7 @@ class Halo {
 // The pairs a rank shares with other ranks (issue 18, item 1: the bond star forest): the bonds of
 // its rows whose other end is owned elsewhere, in CSR order, their rows, and the exchange that
 // copies, per bond array in CSR order, each such bond's reverse (families.reverse) from the rank
-// that owns it, into the same global entry here.
+// that owns it, into that reverse's entry here (in this rank's CSR, Families).
 struct SharedBonds {
   std::vector<int> bonds, rows;
   std::unique_ptr<IndexExchange> reverses;

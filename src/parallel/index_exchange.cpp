@@ -30,8 +30,13 @@ int rank_in_split(MPI_Comm comm, const std::vector<int>& boundaries, int total, 
   return rank;
 }
 
-IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed)
-    : comm_(comm), boundaries_(std::move(boundaries)), needed_(std::move(needed)) {
+IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed,
+                             std::vector<int> slots, long own_first)
+    : comm_(comm),
+      boundaries_(std::move(boundaries)),
+      needed_(std::move(needed)),
+      slots_(std::move(slots)),
+      own_first_(own_first) {
   PetscBool initialized = PETSC_FALSE;
   check(PetscInitialized(&initialized), "PetscInitialized");
   if (!initialized) throw std::logic_error("IndexExchange: PETSc is not initialised");
@@ -43,6 +48,10 @@ IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::ve
       throw std::invalid_argument(fmt::format(
           "IndexExchange: needed entry {} is outside [0, {}), this rank's own or out of order",
           needed_[k], boundaries_.back()));
+  if (slots_.empty()) slots_ = needed_;
+  if (slots_.size() != needed_.size())
+    throw std::invalid_argument("IndexExchange: one slot per needed entry expected");
+  if (own_first_ < 0) own_first_ = begin();
   std::vector<PetscSFNode> remote(needed_.size());
   for (std::size_t k = 0; k < needed_.size(); ++k) {
     const int owner = owner_of(boundaries_, needed_[k]);
@@ -78,11 +87,11 @@ void IndexExchange::fill_bytes(void* values, std::size_t entry_bytes) const {
   const MPI_Datatype type = unit(entry_bytes);
   buffer_.resize(needed_.size() * entry_bytes);
   auto* bytes = static_cast<unsigned char*>(values);
-  const unsigned char* roots = bytes + static_cast<std::size_t>(begin()) * entry_bytes;
+  const unsigned char* roots = bytes + static_cast<std::size_t>(own_first_) * entry_bytes;
   check(PetscSFBcastBegin(forest_, type, roots, buffer_.data(), MPI_REPLACE), "PetscSFBcastBegin");
   check(PetscSFBcastEnd(forest_, type, roots, buffer_.data(), MPI_REPLACE), "PetscSFBcastEnd");
   for (std::size_t k = 0; k < needed_.size(); ++k)
-    std::memcpy(bytes + static_cast<std::size_t>(needed_[k]) * entry_bytes,
+    std::memcpy(bytes + static_cast<std::size_t>(slots_[k]) * entry_bytes,
                 buffer_.data() + k * entry_bytes, entry_bytes);
 }
 

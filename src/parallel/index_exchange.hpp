@@ -22,7 +22,11 @@ class IndexExchange {
  public:
   // `boundaries`: as rank_in_split over [0, boundaries.back()); `needed`: sorted, unique, none in
   // this rank's own range. PETSc must be initialised. Collective over comm.
-  IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed);
+  // Where this rank keeps the array in a numbering of its own (a rank's bonds, Families): its
+  // own entries start at `own_first`, and needed[k] is written to entry slots[k]. By default
+  // both are the global numbering's.
+  IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::vector<int> needed,
+                std::vector<int> slots = {}, long own_first = -1);
   ~IndexExchange();
   IndexExchange(const IndexExchange&) = delete;
   IndexExchange& operator=(const IndexExchange&) = delete;
@@ -47,6 +51,8 @@ class IndexExchange {
   int rank_ = 0;
   std::vector<int> boundaries_;
   std::vector<int> needed_;
+  std::vector<int> slots_;  // where each needed entry is written
+  long own_first_ = 0;      // where this rank's own entries start
   // Roots: this rank's own entries; leaves: the needed ones, in a contiguous buffer.
   PetscSF forest_ = nullptr;
   // An entry of each size filled so far, as MPI_BYTE × size.

@@ -41,16 +41,39 @@ std::uint64_t spread_bits(std::uint64_t v) {
 
 }  // namespace
 
-Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
+namespace {
+
+// The members of particle i: every other particle of its body within its horizon, passed to
+// visit(j, squared distance) in the k-d tree's order.
+template <class Visit>
+void search_family(const KdTree& tree, const Particles& particles,
+                   const std::vector<double>& horizon_of_body, int i,
+                   std::vector<std::pair<std::uint32_t, double>>& matches,
+                   Visit visit) {
+  const int body = particles.body[i];
+  const double delta = horizon_of_body[body];
+  matches.clear();
+  tree.radiusSearch(&particles.reference[3 * i], delta * delta, matches,
+                    nanoflann::SearchParams(32, 0, false));
+  for (const auto& match : matches) {
+    const int j = static_cast<int>(match.first);
+    if (j != i && particles.body[j] == body) visit(j, match.second);
+  }
+}
+
+// The families of the rows `keep` marks (every row when it is empty), the others empty.
+Families families_of(const Particles& particles, const std::vector<double>& horizon_of_body,
+                     const std::vector<char>& keep) {
   const int n = particles.count();
   PointCloud cloud{particles.reference};
   KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
+  const auto kept = [&keep](int i) { return keep.empty() || keep[i]; };
 
   // Each thread searches one contiguous block of rows (schedule(static) hands out blocks in
   // thread order) into one flat buffer, so the rows join in CSR order. Flat buffers instead of a
   // vector per row: those small blocks, once freed, would stay resident for the whole run.
-  std::vector<int> row_size(n);
+  std::vector<int> row_size(n, 0);
   std::vector<std::vector<int>> block(omp_get_max_threads());
 #pragma omp parallel
   {
@@ -58,16 +81,10 @@ Families build_families(const Particles& particles, const std::vector<double>& h
     std::vector<int>& mine = block[omp_get_thread_num()];
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
-      const int body = particles.body[i];
-      const double delta = horizon_of_body[body];
-      matches.clear();
-      tree.radiusSearch(&particles.reference[3 * i], delta * delta, matches,
-                        nanoflann::SearchParams(32, 0, false));
+      if (!kept(i)) continue;
       const std::size_t start = mine.size();
-      for (const auto& match : matches) {
-        const int j = static_cast<int>(match.first);
-        if (j != i && particles.body[j] == body) mine.push_back(j);
-      }
+      search_family(tree, particles, horizon_of_body, i, matches,
+                    [&mine](int j, double) { mine.push_back(j); });
       std::sort(mine.begin() + static_cast<std::ptrdiff_t>(start), mine.end());
       row_size[i] = static_cast<int>(mine.size() - start);
     }
@@ -103,9 +120,71 @@ Families build_families(const Particles& particles, const std::vector<double>& h
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
       const int j = f.neighbors[b];
       const auto row = f.neighbors.begin();
-      f.reverse[b] =
-          static_cast<int>(std::lower_bound(row + f.offsets[j], row + f.offsets[j + 1], i) - row);
+      f.reverse[b] = kept(j) ? static_cast<int>(std::lower_bound(row + f.offsets[j],
+                                                                 row + f.offsets[j + 1], i) -
+                                                row)
+                             : -1;
     }
+  return f;
+}
+
+}  // namespace
+
+Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
+  return families_of(particles, horizon_of_body, {});
+}
+
+FamilySizes count_families(const Particles& particles,
+                           const std::vector<double>& horizon_of_body) {
+  const int n = particles.count();
+  PointCloud cloud{particles.reference};
+  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  std::vector<int> row_size(n, 0);
+  FamilySizes sizes;
+  sizes.nearest.assign(n, std::numeric_limits<double>::infinity());
+#pragma omp parallel
+  {
+    std::vector<std::pair<std::uint32_t, double>> matches;
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      double nearest = std::numeric_limits<double>::infinity();
+      search_family(tree, particles, horizon_of_body, i, matches, [&](int, double squared) {
+        ++row_size[i];
+        nearest = std::min(nearest, squared);
+      });
+      sizes.nearest[i] = std::sqrt(nearest);
+    }
+  }
+  long long total = 0;
+  sizes.offsets.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) {
+    total += row_size[i];
+    if (total > std::numeric_limits<int>::max())
+      throw std::length_error(
+          fmt::format("more bonds than the 2^31 this build indexes; coarsen resolution or "
+                      "lower horizon"));
+    sizes.offsets[i + 1] = static_cast<int>(total);
+  }
+  return sizes;
+}
+
+Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
+                        const FamilySizes& sizes, int begin, int end) {
+  const int n = particles.count();
+  std::vector<char> keep(n, 0);
+  std::fill(keep.begin() + begin, keep.begin() + end, 1);
+  {
+    const Families own = families_of(particles, horizon_of_body, keep);
+    for (int b = own.offsets[begin]; b < own.offsets[end]; ++b) keep[own.neighbors[b]] = 1;
+  }
+  Families f = families_of(particles, horizon_of_body, keep);
+  for (int i = 0; i < n; ++i)
+    if (keep[i] && f.offsets[i + 1] - f.offsets[i] != sizes.offsets[i + 1] - sizes.offsets[i])
+      throw std::logic_error("split_families: a family's size differs from its count");
+  f.global_offsets = sizes.offsets;
+  f.own_begin = begin;
+  f.own_end = end;
   return f;
 }
 

@@ -15,17 +15,61 @@ struct Particles {
 };
 
 // Family H_i of every particle (paper §3), as directed bonds: each pair appears in both rows.
+// Over several ranks (issue 18) a rank keeps only the rows it needs: its own and its ghosts'
+// (split_families); the other rows are empty, bonds are numbered in this rank's CSR, and
+// global_offsets keeps the whole families' CSR offsets, in which checkpoints and the bond star
+// forest number the bonds.
 struct Families {
   std::vector<int> offsets;              // count + 1
   std::vector<int> neighbors;            // j for each bond, rows sorted by j
   std::vector<double> reference_length;  // |ξ| = |x_j - x_i|
-  std::vector<int> reverse;              // index of the same bond in row j (j → i)
+  std::vector<int> reverse;              // index of the same bond in row j (j → i); −1: row j not kept
+  std::vector<int> global_offsets;       // the whole families' offsets; empty: these are whole
+  int own_begin = 0, own_end = -1;       // the rows this rank owns; −1: to the last row
   std::size_t directed_bonds() const { return neighbors.size(); }
+  bool whole() const { return global_offsets.empty(); }
+  // The rows whose every member's row is kept, [first_own_row(), end_own_row()).
+  int first_own_row() const { return own_begin; }
+  int end_own_row() const {
+    return own_end < 0 ? static_cast<int>(offsets.size()) - 1 : own_end;
+  }
+  // Bonds of the whole families, on every rank.
+  std::size_t total_directed_bonds() const {
+    return whole() ? neighbors.size() : static_cast<std::size_t>(global_offsets.back());
+  }
+  // The whole families' index of bond b of row i.
+  long global_bond(int i, int b) const {
+    return whole() ? b : long(global_offsets[i]) + (b - offsets[i]);
+  }
+  // A per-bond array of the whole families (a checkpoint's) in this CSR: the kept rows'
+  // entries. Returned as given when the families are whole or its size is not theirs.
+  template <class T>
+  std::vector<T> localize(const std::vector<T>& whole_array) const {
+    if (whole() || whole_array.size() != total_directed_bonds()) return whole_array;
+    std::vector<T> local(directed_bonds());
+    const int n = static_cast<int>(offsets.size()) - 1;
+    for (int i = 0; i < n; ++i)
+      for (int b = offsets[i]; b < offsets[i + 1]; ++b) local[b] = whole_array[global_bond(i, b)];
+    return local;
+  }
 };
 
 // Builds the families: every particle of the same body within `horizon[body]` (δ in metres),
 // found with a k-d tree.
 Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body);
+
+// What a split over ranks needs before any family is kept: each particle's number of family
+// members and the distance to its nearest member (+∞ without one).
+struct FamilySizes {
+  std::vector<int> offsets;       // the whole families' CSR offsets
+  std::vector<double> nearest;    // per particle
+};
+FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body);
+
+// The rows [begin, end) and their members' rows (the ghosts) of the whole families, the other
+// rows empty (Families above); `sizes` from count_families.
+Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
+                        const FamilySizes& sizes, int begin, int end);
 
 // Reorders particles along a Morton curve of cell size `cell` so that families are near in
 // memory. Returns the permutation: new index k holds the particle that had index order[k].

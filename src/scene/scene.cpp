@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -86,33 +88,59 @@ void add_point_particles(const Body& body, int body_index, const std::string& ke
 }
 
 // Every particle needs a family, and no two particles may coincide (a zero-length bond has no
-// direction, and near-coincident ones would make the stable step vanish).
-void check_families(const Scene& scene) {
+// direction, and near-coincident ones would make the stable step vanish). `members(i)` is the
+// size of i's family and `nearest(i)` the distance to its nearest member.
+template <class Members, class Nearest>
+void check_families(const Scene& scene, Members members, Nearest nearest) {
   const Particles& p = scene.particles;
-  const Families& f = scene.families;
   for (int i = 0; i < p.count(); ++i) {
     const int body = p.body[i];
     const double delta = scene.horizon_of_body[body];
     const double* x = &p.reference[3 * i];
-    if (f.offsets[i + 1] == f.offsets[i])
+    if (members(i) == 0)
       throw InputError(scene.config.file, fmt::format("bodies[{}].horizon", body),
                        fmt::format("the particle at ({:.6g}, {:.6g}, {:.6g}) has no other particle "
                                    "within the horizon δ = {:.6g} m; raise horizon or refine "
                                    "resolution",
                                    x[0], x[1], x[2], delta));
-    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b)
-      if (f.reference_length[b] < 1e-6 * delta)
-        throw InputError(
-            scene.config.file, fmt::format("bodies[{}].geometry", body),
-            fmt::format("two particles at ({:.6g}, {:.6g}, {:.6g}) are {:.3g} m apart, "
-                        "closer than 1e-6 horizons",
-                        x[0], x[1], x[2], f.reference_length[b]));
+    if (const double closest = nearest(i); closest < 1e-6 * delta)
+      throw InputError(scene.config.file, fmt::format("bodies[{}].geometry", body),
+                       fmt::format("two particles at ({:.6g}, {:.6g}, {:.6g}) are {:.3g} m apart, "
+                                   "closer than 1e-6 horizons",
+                                   x[0], x[1], x[2], closest));
   }
+}
+
+// The whole families, or over several ranks this rank's part of them (Families). Each rank
+// checks every particle from the counts, so that a bad scene stops every rank alike.
+void build_scene_families(Scene& scene, const RowSplit& split) {
+  if (!split.boundaries) {
+    scene.families = build_families(scene.particles, scene.horizon_of_body);
+    const Families& f = scene.families;
+    check_families(
+        scene, [&f](int i) { return f.offsets[i + 1] - f.offsets[i]; },
+        [&f](int i) {
+          double closest = std::numeric_limits<double>::infinity();
+          for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b)
+            closest = std::min(closest, f.reference_length[b]);
+          return closest;
+        });
+    return;
+  }
+  const FamilySizes sizes = count_families(scene.particles, scene.horizon_of_body);
+  check_families(
+      scene, [&sizes](int i) { return sizes.offsets[i + 1] - sizes.offsets[i]; },
+      [&sizes](int i) { return sizes.nearest[i]; });
+  scene.boundaries = split.boundaries(sizes.offsets);
+  scene.part = split.part;
+  scene.families = split_families(scene.particles, scene.horizon_of_body, sizes,
+                                  scene.boundaries.at(split.part),
+                                  scene.boundaries.at(split.part + 1));
 }
 
 }  // namespace
 
-Scene build_scene(const Config& config) {
+Scene build_scene(const Config& config, const RowSplit& split) {
   Scene scene;
   scene.config = config;
   double smallest_horizon = 0;
@@ -145,11 +173,10 @@ Scene build_scene(const Config& config) {
         if (i >= 0) i = sorted_index[i];
   }
   try {
-    scene.families = build_families(scene.particles, scene.horizon_of_body);
+    build_scene_families(scene, split);
   } catch (const std::length_error& e) {
     throw InputError(config.file, "bodies", e.what());
   }
-  check_families(scene);
   return scene;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // A loaded scene: the config plus the particles and families sampled from it.
+#include <functional>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -22,10 +23,23 @@ struct Scene {
   Families families;
   std::vector<double> horizon_of_body;  // δ in metres, per body
   std::vector<BodyTetMesh> tet_meshes;  // per tet body, only if config.output.embedded_mesh()
+  // Over several ranks (RowSplit): the first row of each rank's range and the row count, and
+  // this rank; families then holds only this rank's rows and its ghosts' (Families). Empty on
+  // one rank.
+  std::vector<int> boundaries;
+  int part = 0;
+};
+
+// How build_scene splits the rows over ranks: `boundaries` maps the whole families' CSR offsets
+// to the ranks' row ranges (parallel/ownership.hpp), and this rank is `part`. Unset: one rank.
+struct RowSplit {
+  std::function<std::vector<int>(const std::vector<int>& offsets)> boundaries;
+  int part = 0;
 };
 
 // Samples every body into particles (one per tet at its barycentre, paper §5.2, or read from a
-// points file) and builds the families. Throws InputError for unusable geometry.
-Scene build_scene(const Config& config);
+// points file) and builds the families, split as `split` asks. Throws InputError for unusable
+// geometry, the same on every rank.
+Scene build_scene(const Config& config, const RowSplit& split = {});
 
 }  // namespace fissure
