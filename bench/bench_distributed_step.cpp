@@ -57,12 +57,12 @@ int run(int argc, char** argv) {
       length, lambda);
   const auto setup_start = std::chrono::steady_clock::now();
   // each rank keeps its own rows' families and its ghosts' only, as `fissure run` does
-  const fissure::Scene scene = fissure::build_scene(
-      fissure::parse_config(yaml, "bench.yaml"),
-      {[ranks](const std::vector<int>& offsets) {
-         return fissure::split_rows_by_bonds(offsets, ranks);
-       },
-       rank});
+  const fissure::Scene scene =
+      fissure::build_scene(fissure::parse_config(yaml, "bench.yaml"),
+                           {[ranks](const std::vector<int>& offsets) {
+                              return fissure::split_rows_by_bonds(offsets, ranks);
+                            },
+                            rank});
   auto model = fissure::make_model(scene);
   fissure::Dynamics dynamics(scene, *model);
   fissure::BondBreaking fracture(scene, *model);
@@ -94,9 +94,12 @@ int run(int argc, char** argv) {
   const double halo_bytes = static_cast<double>(halo.received_bytes(3) + halo.received_bytes(4));
   const double bonds =
       static_cast<double>(scene.families.offsets[end] - scene.families.offsets[begin]);
-  const double results[] = {largest_over_ranks(per_step),   largest_over_ranks(ghosts / owned),
-                            largest_over_ranks(halo_bytes), largest_over_ranks(peak_rss_mb()),
-                            largest_over_ranks(setup),      largest_over_ranks(bonds),
+  const double results[] = {largest_over_ranks(per_step),
+                            largest_over_ranks(ghosts / owned),
+                            largest_over_ranks(halo_bytes),
+                            largest_over_ranks(peak_rss_mb()),
+                            largest_over_ranks(setup),
+                            largest_over_ranks(bonds),
                             largest_over_ranks(double(scene.families.directed_bonds()))};
   if (rank == 0) {
     fmt::print("ranks {}\n", ranks);

@@ -83,9 +83,9 @@ RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.cou
   if (boundaries.empty())
     boundaries = split_rows_by_bonds(families.offsets, size_);
   else if (static_cast<int>(boundaries.size()) != size_ + 1 || scene.part != rank_)
-    throw std::invalid_argument(fmt::format(
-        "RunRanks: the scene was split for part {} of {}, not for rank {} of {}", scene.part,
-        boundaries.size() - 1, rank_, size_));
+    throw std::invalid_argument(
+        fmt::format("RunRanks: the scene was split for part {} of {}, not for rank {} of {}",
+                    scene.part, boundaries.size() - 1, rank_, size_));
   const std::vector<int>& offsets = families.whole() ? families.offsets : families.global_offsets;
   for (const int row : boundaries) bond_boundaries_.push_back(offsets[row]);
   begin_ = boundaries[rank_];

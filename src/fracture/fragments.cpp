@@ -76,8 +76,9 @@ long count_fragments(MPI_Comm comm, const Families& families,
   check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
   const int n = static_cast<int>(families.offsets.size()) - 1;
   DisjointSets sets(n);
-  join_rows(families, families.first_own_row(), families.end_own_row(),
-            [&broken](int b) { return broken.empty() || broken[b] == 0; }, sets);
+  join_rows(
+      families, families.first_own_row(), families.end_own_row(),
+      [&broken](int b) { return broken.empty() || broken[b] == 0; }, sets);
   std::vector<int> pairs;  // (particle, its representative) where they differ
   for (int k = 0; k < n; ++k)
     if (const int root = sets.find(k); root != k) pairs.insert(pairs.end(), {k, root});

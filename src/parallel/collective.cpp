@@ -61,9 +61,8 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, co
     displacements[r] = boundaries[r] * entry;
   }
   std::vector<T> gathered(rank == 0 ? static_cast<std::size_t>(boundaries.back()) * width : 0);
-  check(MPI_Gatherv(own, counts[rank],
-                    MPI_BYTE, gathered.data(), counts.data(), displacements.data(), MPI_BYTE, 0,
-                    comm),
+  check(MPI_Gatherv(own, counts[rank], MPI_BYTE, gathered.data(), counts.data(),
+                    displacements.data(), MPI_BYTE, 0, comm),
         "MPI_Gatherv");
   return gathered;
 }

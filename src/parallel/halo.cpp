@@ -53,9 +53,9 @@ SharedBonds share_bonds(const Halo& halo, const Families& families) {
   const std::vector<int>& whole = families.whole() ? families.offsets : families.global_offsets;
   std::vector<int> bond_boundaries;
   for (const int row : halo.boundaries()) bond_boundaries.push_back(whole[row]);
-  shared.reverses = std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries),
-                                                    std::move(needed), std::move(slots),
-                                                    families.offsets[halo.begin()]);
+  shared.reverses =
+      std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries), std::move(needed),
+                                      std::move(slots), families.offsets[halo.begin()]);
   return shared;
 }
 

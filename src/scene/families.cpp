@@ -48,8 +48,7 @@ namespace {
 template <class Visit>
 void search_family(const KdTree& tree, const Particles& particles,
                    const std::vector<double>& horizon_of_body, int i,
-                   std::vector<std::pair<std::uint32_t, double>>& matches,
-                   Visit visit) {
+                   std::vector<std::pair<std::uint32_t, double>>& matches, Visit visit) {
   const int body = particles.body[i];
   const double delta = horizon_of_body[body];
   matches.clear();
@@ -120,10 +119,10 @@ Families families_of(const Particles& particles, const std::vector<double>& hori
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
       const int j = f.neighbors[b];
       const auto row = f.neighbors.begin();
-      f.reverse[b] = kept(j) ? static_cast<int>(std::lower_bound(row + f.offsets[j],
-                                                                 row + f.offsets[j + 1], i) -
-                                                row)
-                             : -1;
+      f.reverse[b] =
+          kept(j) ? static_cast<int>(
+                        std::lower_bound(row + f.offsets[j], row + f.offsets[j + 1], i) - row)
+                  : -1;
     }
   return f;
 }
@@ -134,8 +133,7 @@ Families build_families(const Particles& particles, const std::vector<double>& h
   return families_of(particles, horizon_of_body, {});
 }
 
-FamilySizes count_families(const Particles& particles,
-                           const std::vector<double>& horizon_of_body) {
+FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
   const int n = particles.count();
   PointCloud cloud{particles.reference};
   KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));

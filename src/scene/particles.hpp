@@ -23,16 +23,14 @@ struct Families {
   std::vector<int> offsets;              // count + 1
   std::vector<int> neighbors;            // j for each bond, rows sorted by j
   std::vector<double> reference_length;  // |ξ| = |x_j - x_i|
-  std::vector<int> reverse;              // index of the same bond in row j (j → i); −1: row j not kept
-  std::vector<int> global_offsets;       // the whole families' offsets; empty: these are whole
-  int own_begin = 0, own_end = -1;       // the rows this rank owns; −1: to the last row
+  std::vector<int> reverse;  // index of the same bond in row j (j → i); −1: row j not kept
+  std::vector<int> global_offsets;  // the whole families' offsets; empty: these are whole
+  int own_begin = 0, own_end = -1;  // the rows this rank owns; −1: to the last row
   std::size_t directed_bonds() const { return neighbors.size(); }
   bool whole() const { return global_offsets.empty(); }
   // The rows whose every member's row is kept, [first_own_row(), end_own_row()).
   int first_own_row() const { return own_begin; }
-  int end_own_row() const {
-    return own_end < 0 ? static_cast<int>(offsets.size()) - 1 : own_end;
-  }
+  int end_own_row() const { return own_end < 0 ? static_cast<int>(offsets.size()) - 1 : own_end; }
   // Bonds of the whole families, on every rank.
   std::size_t total_directed_bonds() const {
     return whole() ? neighbors.size() : static_cast<std::size_t>(global_offsets.back());
@@ -61,8 +59,8 @@ Families build_families(const Particles& particles, const std::vector<double>& h
 // What a split over ranks needs before any family is kept: each particle's number of family
 // members and the distance to its nearest member (+∞ without one).
 struct FamilySizes {
-  std::vector<int> offsets;       // the whole families' CSR offsets
-  std::vector<double> nearest;    // per particle
+  std::vector<int> offsets;     // the whole families' CSR offsets
+  std::vector<double> nearest;  // per particle
 };
 FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body);
 

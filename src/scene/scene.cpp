@@ -133,9 +133,9 @@ void build_scene_families(Scene& scene, const RowSplit& split) {
       [&sizes](int i) { return sizes.nearest[i]; });
   scene.boundaries = split.boundaries(sizes.offsets);
   scene.part = split.part;
-  scene.families = split_families(scene.particles, scene.horizon_of_body, sizes,
-                                  scene.boundaries.at(split.part),
-                                  scene.boundaries.at(split.part + 1));
+  scene.families =
+      split_families(scene.particles, scene.horizon_of_body, sizes, scene.boundaries.at(split.part),
+                     scene.boundaries.at(split.part + 1));
 }
 
 }  // namespace

@@ -18,11 +18,10 @@ namespace {
 // The slab built again, split over the ranks as `fissure run` splits it.
 Scene split_slab(const Scene& whole) {
   const int parts = test::ranks();
-  return build_scene(whole.config,
-                     {[parts](const std::vector<int>& offsets) {
-                        return split_rows_by_bonds(offsets, parts);
-                      },
-                      test::rank()});
+  return build_scene(whole.config, {[parts](const std::vector<int>& offsets) {
+                                      return split_rows_by_bonds(offsets, parts);
+                                    },
+                                    test::rank()});
 }
 
 TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
@@ -51,12 +50,12 @@ TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
     }
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
       const long g = f.global_bond(i, b);
-      wrong_bonds += f.neighbors[b] != w.neighbors[g] ||
-                     f.reference_length[b] != w.reference_length[g];
+      wrong_bonds +=
+          f.neighbors[b] != w.neighbors[g] || f.reference_length[b] != w.reference_length[g];
       // an own row's every reverse is kept here, and is the whole families' reverse
       if (own)
-        wrong_reverses += f.reverse[b] < 0 ||
-                          f.global_bond(f.neighbors[b], f.reverse[b]) != w.reverse[g];
+        wrong_reverses +=
+            f.reverse[b] < 0 || f.global_bond(f.neighbors[b], f.reverse[b]) != w.reverse[g];
     }
   }
   EXPECT_EQ(wrong_rows, 0);
