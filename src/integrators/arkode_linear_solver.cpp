@@ -33,7 +33,8 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
   if (distributed() && !distributable(nearest))
     throw RunError("arkode: only the nearest preconditioner runs over several ranks");
   if (nearest) {
-    nearest_ = nearest_bonds(families, kNearestMembers);
+    nearest_ = nearest_bonds(families, kNearestMembers,
+                             [&dynamics](double* reach) { dynamics.share(reach, 1); });
     // over several ranks the rank's rows only, the others empty
     stiffness_ = nearest_bond_pattern(families, nearest_, dynamics.first_row(), dynamics.end_row());
   } else {

@@ -43,8 +43,10 @@ int Dynamics::first_row() const { return halo_ ? halo_->begin() : 0; }
 
 int Dynamics::end_row() const { return halo_ ? halo_->end() : static_cast<int>(mass_.size()); }
 
-void Dynamics::share(double* y) const {
-  if (halo_) halo_->fill(y, 3);
+void Dynamics::share(double* y) const { share(y, 3); }
+
+void Dynamics::share(double* values, int width) const {
+  if (halo_) halo_->fill(values, width);
 }
 
 void Dynamics::end_step(double h) {

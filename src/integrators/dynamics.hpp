@@ -76,6 +76,8 @@ class Dynamics {
   // Fills the ghosts' entries of y (3N) from the ranks that own them; nothing on one rank.
   // Collective.
   void share(double* y) const;
+  // The same for a per-particle array of `width` values per particle.
+  void share(double* values, int width) const;
   // For integrators that hold particles through their own equations (petsc_newton): the
   // constraint reactions they computed, 3N (read on held particles only).
   void set_constraint_reactions(const std::vector<double>& reaction) {

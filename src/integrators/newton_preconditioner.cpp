@@ -117,7 +117,8 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
       break;
     case Kind::nearest:
     case Kind::gamg:
-      nearest_ = nearest_bonds(families, kind == Kind::gamg ? kGamgMembers : kNearestMembers);
+      nearest_ = nearest_bonds(families, kind == Kind::gamg ? kGamgMembers : kNearestMembers,
+                               [&system](double* reach) { system.dynamics().share(reach, 1); });
       matrix_ = nearest_bond_pattern(families, nearest_, first, end);
       break;
     case Kind::scalar:

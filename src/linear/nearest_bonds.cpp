@@ -4,7 +4,8 @@
 
 namespace fissure {
 
-std::vector<char> nearest_bonds(const Families& families, int members) {
+std::vector<char> nearest_bonds(const Families& families, int members,
+                                const std::function<void(double* reach)>& share_reach) {
   const int n = static_cast<int>(families.offsets.size()) - 1;
   const auto& off = families.offsets;
   const auto& length = families.reference_length;
@@ -24,6 +25,7 @@ std::vector<char> nearest_bonds(const Families& families, int members) {
       reach[i] = lengths[members - 1];
     }
   }
+  if (share_reach) share_reach(reach.data());
   std::vector<char> kept(families.directed_bonds());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)

@@ -4,6 +4,7 @@
 // factor too large to keep at 1e5 particles; keeping a fixed number of nearest members thins the
 // separators that fill-in grows with, while the bonds kept still carry bending, which a scalar
 // matrix (scalar_bond_pattern) does not.
+#include <functional>
 #include <vector>
 
 #include "linear/sparse_symmetric.hpp"
@@ -20,7 +21,11 @@ constexpr int kNearestMembers = 20;
 // One flag per directed bond: whether the bond joins particles of which one counts the other
 // among its `members` nearest family members (ties at the last length kept), so that
 // kept[b] == kept[reverse[b]]. A family of at most `members` members keeps every bond.
-std::vector<char> nearest_bonds(const Families& families, int members);
+// Over several ranks with split families (a ghost's row holds only some of its members),
+// `share_reach` gives the ghosts their own ranks' reach (one double per particle, the length of
+// a row's last kept member) before the flags are set.
+std::vector<char> nearest_bonds(const Families& families, int members,
+                                const std::function<void(double* reach)>& share_reach = {});
 
 // 3×3 blocks coupling each particle with itself and the members its kept bonds join, in
 // increasing order (bond_pattern's layout over the kept bonds only).

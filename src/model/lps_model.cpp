@@ -276,12 +276,31 @@ void LpsModel::distribute(const Halo& halo) {
   halo_ = &halo;
   row_begin_ = halo.begin();
   row_end_ = halo.end();
-  if (plastic_) shared_ = share_bonds(halo, families_);
+  if (plastic_ || !families_.whole()) shared_ = share_bonds(halo, families_);
   if (families_.whole()) return;
+  take_ghosts_set_up();
   // each rank counted its own rows of the deviatoric calibration
   for (auto& [name, value] : statistics_)
     value = name == "deviatoric_largest_residual" ? max_over_ranks(halo.comm(), value)
                                                   : sum_over_ranks(halo.comm(), value);
+}
+
+// A ghost's row here holds only its bonds to this rank's rows (Families), so what the
+// constructor computed from it is not the ghost's: its per-particle set-up values (m_j or M_j,
+// B_j, V_j) come from its rank through the halo, and its weights of each pair shared with this
+// rank (c_ji, w_ji, computed there from its whole family, and zeroed there where pre-cracks
+// broke the pair) through the bond star forest. Collective.
+void LpsModel::take_ghosts_set_up() {
+  shared_.reverses->fill(bond_weight_.data(), 1);
+  shared_.reverses->fill(bond_deviatoric_.data(), 1);
+  for (const int b : shared_.bonds) {
+    const int r = families_.reverse[b];
+    bond_reverse_weight_[b] = bond_weight_[r];
+    if (!bond_reverse_deviatoric_.empty()) bond_reverse_deviatoric_[b] = bond_deviatoric_[r];
+  }
+  halo_->fill(weighted_volume_.data(), 1);
+  static_assert(sizeof(NeighbourTerms) == 4 * sizeof(double));
+  halo_->fill(reinterpret_cast<double*>(terms_.data()), 4);
 }
 
 // θ_i = Σ_j c_ij e_ij V_j (Eq 6 with Λ dropped), summed as compute_dilatation sums it.

@@ -134,6 +134,8 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // from row j's rank (share_plastic_extensions()).
   SharedBonds shared_;
   std::size_t share_plastic_extensions(std::size_t yielded);
+  // Over several ranks with split families: the ghosts' set-up values from their ranks.
+  void take_ghosts_set_up();
   std::vector<double> yield_force_;          // A^c_i = √(2Ψ0) (Eq 14)
   std::vector<double> max_plastic_stretch_;  // γ / |ξ| (Eq 16, Table 1)
   std::vector<double> energy_;               // V_i W_i, scratch of forces_and_energy

@@ -60,24 +60,30 @@ void search_family(const KdTree& tree, const Particles& particles,
   }
 }
 
-// The families of the rows `keep` marks (every row when it is empty), the others empty.
+// How families_of keeps a row.
+enum Keep : char { absent = 0, whole_row = 1, own_members = 2 };
+
+// The families of the rows `keep` marks (every row whole when it is empty), the others empty; a
+// row marked own_members keeps only its members in [own_begin, own_end), and each such bond's
+// position in its whole row goes to trimmed_position.
 Families families_of(const Particles& particles, const std::vector<double>& horizon_of_body,
-                     const std::vector<char>& keep) {
+                     const std::vector<char>& keep, int own_begin = 0, int own_end = 0) {
   const int n = particles.count();
   PointCloud cloud{particles.reference};
   KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
-  const auto kept = [&keep](int i) { return keep.empty() || keep[i]; };
+  const auto kept = [&keep](int i) { return keep.empty() || keep[i] != absent; };
 
   // Each thread searches one contiguous block of rows (schedule(static) hands out blocks in
   // thread order) into one flat buffer, so the rows join in CSR order. Flat buffers instead of a
   // vector per row: those small blocks, once freed, would stay resident for the whole run.
   std::vector<int> row_size(n, 0);
-  std::vector<std::vector<int>> block(omp_get_max_threads());
+  std::vector<std::vector<int>> block(omp_get_max_threads()), positions(block.size());
 #pragma omp parallel
   {
     std::vector<std::pair<std::uint32_t, double>> matches;
     std::vector<int>& mine = block[omp_get_thread_num()];
+    std::vector<int>& my_positions = positions[omp_get_thread_num()];
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
       if (!kept(i)) continue;
@@ -85,6 +91,15 @@ Families families_of(const Particles& particles, const std::vector<double>& hori
       search_family(tree, particles, horizon_of_body, i, matches,
                     [&mine](int j, double) { mine.push_back(j); });
       std::sort(mine.begin() + static_cast<std::ptrdiff_t>(start), mine.end());
+      if (!keep.empty() && keep[i] == own_members) {
+        std::size_t end = start;
+        for (std::size_t k = start; k < mine.size(); ++k)
+          if (mine[k] >= own_begin && mine[k] < own_end) {
+            my_positions.push_back(static_cast<int>(k - start));
+            mine[end++] = mine[k];
+          }
+        mine.resize(end);
+      }
       row_size[i] = static_cast<int>(mine.size() - start);
     }
   }
@@ -102,6 +117,8 @@ Families families_of(const Particles& particles, const std::vector<double>& hori
     f.neighbors.insert(f.neighbors.end(), rows.begin(), rows.end());
     std::vector<int>().swap(rows);
   }
+  for (const std::vector<int>& rows : positions)
+    f.trimmed_position.insert(f.trimmed_position.end(), rows.begin(), rows.end());
   f.reference_length.resize(f.offsets[n]);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -170,15 +187,16 @@ FamilySizes count_families(const Particles& particles, const std::vector<double>
 Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
                         const FamilySizes& sizes, int begin, int end) {
   const int n = particles.count();
-  std::vector<char> keep(n, 0);
-  std::fill(keep.begin() + begin, keep.begin() + end, 1);
+  std::vector<char> keep(n, absent);
+  std::fill(keep.begin() + begin, keep.begin() + end, whole_row);
   {
     const Families own = families_of(particles, horizon_of_body, keep);
-    for (int b = own.offsets[begin]; b < own.offsets[end]; ++b) keep[own.neighbors[b]] = 1;
+    for (int b = own.offsets[begin]; b < own.offsets[end]; ++b)
+      if (keep[own.neighbors[b]] == absent) keep[own.neighbors[b]] = own_members;
   }
-  Families f = families_of(particles, horizon_of_body, keep);
-  for (int i = 0; i < n; ++i)
-    if (keep[i] && f.offsets[i + 1] - f.offsets[i] != sizes.offsets[i + 1] - sizes.offsets[i])
+  Families f = families_of(particles, horizon_of_body, keep, begin, end);
+  for (int i = begin; i < end; ++i)
+    if (f.offsets[i + 1] - f.offsets[i] != sizes.offsets[i + 1] - sizes.offsets[i])
       throw std::logic_error("split_families: a family's size differs from its count");
   f.global_offsets = sizes.offsets;
   f.own_begin = begin;

@@ -15,20 +15,23 @@ struct Particles {
 };
 
 // Family H_i of every particle (paper §3), as directed bonds: each pair appears in both rows.
-// Over several ranks (issue 18) a rank keeps only the rows it needs: its own and its ghosts'
-// (split_families); the other rows are empty, bonds are numbered in this rank's CSR, and
+// Over several ranks (issue 18) a rank keeps only the rows it needs (split_families): its own
+// rows whole, and of each ghost's row only its bonds to the own rows (the reverses of the own
+// rows' bonds to it); the other rows are empty. Bonds are numbered in this rank's CSR, and
 // global_offsets keeps the whole families' CSR offsets, in which checkpoints and the bond star
 // forest number the bonds.
 struct Families {
   std::vector<int> offsets;              // count + 1
   std::vector<int> neighbors;            // j for each bond, rows sorted by j
   std::vector<double> reference_length;  // |ξ| = |x_j - x_i|
-  std::vector<int> reverse;  // index of the same bond in row j (j → i); −1: row j not kept
-  std::vector<int> global_offsets;  // the whole families' offsets; empty: these are whole
-  int own_begin = 0, own_end = -1;  // the rows this rank owns; −1: to the last row
+  std::vector<int> reverse;              // index of the same bond in row j (j → i)
+  std::vector<int> global_offsets;       // the whole families' offsets; empty: these are whole
+  int own_begin = 0, own_end = -1;       // the rows this rank owns; −1: to the last row
+  // Per bond of a ghost's row, in CSR order: its position in the whole row.
+  std::vector<int> trimmed_position;
   std::size_t directed_bonds() const { return neighbors.size(); }
   bool whole() const { return global_offsets.empty(); }
-  // The rows whose every member's row is kept, [first_own_row(), end_own_row()).
+  // The rows kept whole, [first_own_row(), end_own_row()): all of them unless split.
   int first_own_row() const { return own_begin; }
   int end_own_row() const { return own_end < 0 ? static_cast<int>(offsets.size()) - 1 : own_end; }
   // Bonds of the whole families, on every rank.
@@ -37,9 +40,12 @@ struct Families {
   }
   // The whole families' index of bond b of row i.
   long global_bond(int i, int b) const {
-    return whole() ? b : long(global_offsets[i]) + (b - offsets[i]);
+    if (whole()) return b;
+    if (i >= own_begin && i < end_own_row()) return long(global_offsets[i]) + (b - offsets[i]);
+    const int own_bonds = offsets[end_own_row()] - offsets[own_begin];
+    return long(global_offsets[i]) + trimmed_position[b < offsets[own_begin] ? b : b - own_bonds];
   }
-  // A per-bond array of the whole families (a checkpoint's) in this CSR: the kept rows'
+  // A per-bond array of the whole families (a checkpoint's) in this CSR: the kept bonds'
   // entries. Returned as given when the families are whole or its size is not theirs.
   template <class T>
   std::vector<T> localize(const std::vector<T>& whole_array) const {
@@ -64,8 +70,8 @@ struct FamilySizes {
 };
 FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body);
 
-// The rows [begin, end) and their members' rows (the ghosts) of the whole families, the other
-// rows empty (Families above); `sizes` from count_families.
+// The rows [begin, end) of the whole families, and of their members' rows (the ghosts) the bonds
+// to those rows; the other rows empty (Families above); `sizes` from count_families.
 Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
                         const FamilySizes& sizes, int begin, int end);
 
