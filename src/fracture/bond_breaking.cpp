@@ -236,11 +236,11 @@ std::size_t BondBreaking::found(std::size_t exceeded) {
         changing_.push_back(families_.neighbors[b]);
   }
   // the rows sharing a pair with a ghost's row whose criterion was exceeded there
-  if (shared_.reverses) {
-    shared_.reverses->fill(exceeded_.data(), 1);
-    for (std::size_t k = 0; k < shared_.bonds.size(); ++k)
-      if (exceeded_[families_.reverse[shared_.bonds[k]]]) {
-        changing_.push_back(shared_.rows[k]);
+  if (shared_) {
+    shared_->reverses->fill(exceeded_.data(), 1);
+    for (std::size_t k = 0; k < shared_->bonds.size(); ++k)
+      if (exceeded_[families_.reverse[shared_->bonds[k]]]) {
+        changing_.push_back(shared_->rows[k]);
         ++exceeded;  // apply() must run here even where no own row exceeded its criterion
       }
   }
@@ -276,7 +276,8 @@ std::size_t BondBreaking::apply() {
   std::sort(changed_.begin(), changed_.end());
   for (const int i : exceeding_)
     std::fill(exceeded_.begin() + off[i], exceeded_.begin() + off[i + 1], std::uint8_t{0});
-  for (const int b : shared_.bonds) exceeded_[families_.reverse[b]] = 0;
+  if (shared_)
+    for (const int b : shared_->bonds) exceeded_[families_.reverse[b]] = 0;
   exceeding_.clear();
   broken_pairs_ += removed / 2;
   if (!halo_) return removed / 2;
@@ -310,7 +311,7 @@ void BondBreaking::distribute(const Halo& halo) {
   halo_ = &halo;
   row_begin_ = halo.begin();
   row_end_ = halo.end();
-  shared_ = share_bonds(halo, families_);
+  shared_ = &halo.shared_bonds(families_);
   full_check_due_ = true;
   std::size_t total = 0;
   for (int i = row_begin_; i < row_end_; ++i)

@@ -94,7 +94,8 @@ class BondBreaking {
   // ghosts' rows that pair with its own, and those own bonds.
   int row_begin_ = 0, row_end_ = 0;
   const Halo* halo_ = nullptr;
-  SharedBonds shared_;  // the pairs shared with other ranks, for exceeded_ (distribute())
+  // the pairs shared with other ranks, for exceeded_ (distribute(); the halo's)
+  const SharedBonds* shared_ = nullptr;
 };
 
 }  // namespace fissure

@@ -276,7 +276,7 @@ void LpsModel::distribute(const Halo& halo) {
   halo_ = &halo;
   row_begin_ = halo.begin();
   row_end_ = halo.end();
-  if (plastic_ || !families_.whole()) shared_ = share_bonds(halo, families_);
+  if (plastic_ || !families_.whole()) shared_ = &halo.shared_bonds(families_);
   if (families_.whole()) return;
   take_ghosts_set_up();
   // each rank counted its own rows of the deviatoric calibration
@@ -291,9 +291,9 @@ void LpsModel::distribute(const Halo& halo) {
 // rank (c_ji, w_ji, computed there from its whole family, and zeroed there where pre-cracks
 // broke the pair) through the bond star forest. Collective.
 void LpsModel::take_ghosts_set_up() {
-  shared_.reverses->fill(bond_weight_.data(), 1);
-  shared_.reverses->fill(bond_deviatoric_.data(), 1);
-  for (const int b : shared_.bonds) {
+  shared_->reverses->fill(bond_weight_.data(), 1);
+  shared_->reverses->fill(bond_deviatoric_.data(), 1);
+  for (const int b : shared_->bonds) {
     const int r = families_.reverse[b];
     bond_reverse_weight_[b] = bond_weight_[r];
     if (!bond_reverse_deviatoric_.empty()) bond_reverse_deviatoric_[b] = bond_deviatoric_[r];
@@ -446,12 +446,12 @@ std::size_t LpsModel::share_plastic_extensions(std::size_t yielded) {
   const std::size_t total =
       static_cast<std::size_t>(sum_over_ranks(halo_->comm(), static_cast<double>(yielded)));
   if (total == 0) return 0;
-  shared_.reverses->fill(plastic_extension_.data(), 1);
-  for (std::size_t k = 0; k < shared_.bonds.size(); ++k) {
-    const int b = shared_.bonds[k];
+  shared_->reverses->fill(plastic_extension_.data(), 1);
+  for (std::size_t k = 0; k < shared_->bonds.size(); ++k) {
+    const int b = shared_->bonds[k];
     const double ep = plastic_extension_[families_.reverse[b]];
     reverse_plastic_extension_[b] = ep;
-    if (ep != 0 || std::signbit(ep)) plastic_row_[shared_.rows[k]] = 1;
+    if (ep != 0 || std::signbit(ep)) plastic_row_[shared_->rows[k]] = 1;
   }
   return total;
 }

@@ -132,7 +132,7 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   std::vector<double> plastic_dilatation_;   // θ^p_i = Σ_j c_ij e^p_ij V_j
   // Over several ranks: the pairs shared with other ranks, whose e^p_ji the return map brings
   // from row j's rank (share_plastic_extensions()).
-  SharedBonds shared_;
+  const SharedBonds* shared_ = nullptr;
   std::size_t share_plastic_extensions(std::size_t yielded);
   // Over several ranks with split families: the ghosts' set-up values from their ranks.
   void take_ghosts_set_up();

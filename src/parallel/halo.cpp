@@ -1,6 +1,7 @@
 #include "parallel/halo.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace fissure {
 
@@ -26,7 +27,14 @@ std::vector<int> ghosts_of(const Families& families, const std::vector<int>& bou
 }  // namespace
 
 Halo::Halo(MPI_Comm comm, const Families& families, std::vector<int> boundaries)
-    : exchange_(comm, boundaries, ghosts_of(families, boundaries, comm)) {}
+    : exchange_(comm, boundaries, ghosts_of(families, boundaries, comm)), families_(&families) {}
+
+const SharedBonds& Halo::shared_bonds(const Families& families) const {
+  if (&families != families_)
+    throw std::invalid_argument("Halo::shared_bonds: not the families the halo was built on");
+  if (!shared_bonds_) shared_bonds_ = std::make_shared<SharedBonds>(share_bonds(*this, families));
+  return *shared_bonds_;
+}
 
 // A rank's bonds are the CSR range of its rows: bond b of row i pairs with bond reverse[b] of
 // row j, in the range of j's rank. The forest numbers bonds as the whole families do; where this

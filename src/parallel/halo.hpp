@@ -13,6 +13,8 @@
 
 namespace fissure {
 
+struct SharedBonds;
+
 class Halo {
  public:
   // This rank (of comm) owns rows [boundaries[rank], boundaries[rank + 1]) of families; every
@@ -31,9 +33,15 @@ class Halo {
   void fill(double* values, int width) const { exchange_.fill(values, width); }
   // Bytes one fill of `width` doubles receives on this rank.
   std::size_t received_bytes(int width) const { return ghosts().size() * width * sizeof(double); }
+  // The pairs this rank shares with others (share_bonds below) for the families it was built
+  // on, made at the first call and kept, so that the model and the fracture post-step use one
+  // star forest. Collective at the first call; throws std::invalid_argument for other families.
+  const SharedBonds& shared_bonds(const Families& families) const;
 
  private:
   IndexExchange exchange_;
+  const Families* families_ = nullptr;
+  mutable std::shared_ptr<const SharedBonds> shared_bonds_;
 };
 
 // The pairs a rank shares with other ranks (issue 18, item 1: the bond star forest): the bonds of
