@@ -72,6 +72,21 @@ inline std::vector<double> perturbed(const Particles& p) {
   return y;
 }
 
+// A slab's material and whether its crack is broken (break_crack_bonds), for the tests that
+// compare a distributed model with one rank's.
+struct ModelCase {
+  std::string name, material;
+  bool cracked;
+};
+
+// The models those tests compare: intact, pre-cracked, with either surface correction.
+inline std::vector<ModelCase> model_cases() {
+  return {{"intact", "", false},
+          {"pre-cracked", "", true},
+          {"full surface correction, pre-cracked", ", surface_correction: full", true},
+          {"no surface correction", ", surface_correction: none", false}};
+}
+
 // Every bond of rows [first, end) crossing x = 0.15 below mid-height (a crack across the
 // ranks' cuts).
 inline void break_crack_bonds(const Scene& scene, Model& model, int first, int end) {

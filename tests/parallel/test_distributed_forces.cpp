@@ -18,16 +18,8 @@
 namespace fissure {
 namespace {
 
-struct Case {
-  std::string name, material;
-  bool cracked;
-};
-
 TEST(DistributedForces, EqualOneRankBitwise) {
-  for (const Case& c :
-       {Case{"intact", "", false}, Case{"pre-cracked", "", true},
-        Case{"full surface correction, pre-cracked", ", surface_correction: full", true},
-        Case{"no surface correction", ", surface_correction: none", false}}) {
+  for (const test::ModelCase& c : test::model_cases()) {
     SCOPED_TRACE(c.name);
     const Scene scene = test::slab(c.material);
     const int n = scene.particles.count();

@@ -86,21 +86,14 @@ TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
   }
 }
 
-struct Case {
-  std::string name, material;
-  bool cracked;
-};
-
 // A model on split families, distributed, against the whole scene's on each rank: the forces
 // of every own row bitwise at a perturbed state (so every weight of a pair shared with another
 // rank and every ghost's set-up value it reads), the stable step, and the nearest members'
 // flags of the own rows' bonds (the ghosts' reach from their ranks).
 TEST(SplitFamilies, ModelOnThemEqualsOneRankBitwise) {
-  for (const Case& c :
-       {Case{"intact", "", false}, Case{"pre-cracked", "", true},
-        Case{"full surface correction, pre-cracked", ", surface_correction: full", true},
-        Case{"no surface correction", ", surface_correction: none", false},
-        Case{"plastic, pre-cracked", ", plasticity: {yield_stress: 2.0e3}", true}}) {
+  std::vector<test::ModelCase> cases = test::model_cases();
+  cases.push_back({"plastic, pre-cracked", ", plasticity: {yield_stress: 2.0e3}", true});
+  for (const test::ModelCase& c : cases) {
     SCOPED_TRACE(c.name);
     const Scene whole = test::slab(c.material);
     const Scene split = split_slab(whole);
