@@ -16,11 +16,11 @@
 #include <cstdlib>
 #include <vector>
 
+#include "app/run_ranks.hpp"
 #include "fracture/bond_breaking.hpp"
 #include "integrators/integrator.hpp"
 #include "model/model.hpp"
 #include "parallel/halo.hpp"
-#include "parallel/ownership.hpp"
 #include "scene/scene.hpp"
 
 namespace {
@@ -56,17 +56,15 @@ int run(int argc, char** argv) {
       "{{critical_stretch: 0.05}}}}\n",
       length, lambda);
   const auto setup_start = std::chrono::steady_clock::now();
-  // each rank keeps its own rows' families and its ghosts' only, as `fissure run` does
-  const fissure::Scene scene =
-      fissure::build_scene(fissure::parse_config(yaml, "bench.yaml"),
-                           {[ranks](const std::vector<int>& offsets) {
-                              return fissure::split_rows_by_bonds(offsets, ranks);
-                            },
-                            rank});
+  // each rank keeps its own rows' families and its ghosts' bonds to them, as `fissure run` does
+  const fissure::Scene scene = fissure::build_scene(
+      fissure::parse_config(yaml, "bench.yaml"), fissure::RunRanks::split_over(PETSC_COMM_WORLD));
   auto model = fissure::make_model(scene);
   fissure::Dynamics dynamics(scene, *model);
   fissure::BondBreaking fracture(scene, *model);
-  const fissure::Halo halo(PETSC_COMM_WORLD, scene.families, scene.boundaries);
+  const fissure::Halo halo(
+      PETSC_COMM_WORLD, scene.families,
+      scene.boundaries.empty() ? std::vector<int>{0, scene.particles.count()} : scene.boundaries);
   dynamics.distribute(halo);
   fracture.distribute(halo);
   const double setup = seconds_since(setup_start);

@@ -65,9 +65,25 @@ MPI_Comm run_comm(MPI_Comm comm, int& size, int& rank) {
 
 RowSplit RunRanks::split_over(MPI_Comm comm) {
   int size = 1, rank = 0;
-  if (run_comm(comm, size, rank) == MPI_COMM_NULL) return {};
+  comm = run_comm(comm, size, rank);
+  if (comm == MPI_COMM_NULL) return {};
+  // each rank counted its share of the particles (RowSplit): every rank gets every count
+  auto share_counts = [comm, size](FamilySizes& sizes) {
+    const long n = static_cast<long>(sizes.members.size());
+    std::vector<int> counts(size), first(size);
+    for (int r = 0; r < size; ++r) {
+      first[r] = static_cast<int>(n * r / size);
+      counts[r] = static_cast<int>(n * (r + 1) / size) - first[r];
+    }
+    check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, sizes.members.data(), counts.data(),
+                         first.data(), MPI_INT, comm),
+          "MPI_Allgatherv");
+    check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, sizes.nearest.data(), counts.data(),
+                         first.data(), MPI_DOUBLE, comm),
+          "MPI_Allgatherv");
+  };
   return {[size](const std::vector<int>& offsets) { return split_rows_by_bonds(offsets, size); },
-          rank};
+          rank, size, share_counts};
 }
 
 RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.count()) {

@@ -150,42 +150,46 @@ Families build_families(const Particles& particles, const std::vector<double>& h
   return families_of(particles, horizon_of_body, {});
 }
 
-FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
+FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body,
+                           int first, int end) {
   const int n = particles.count();
   PointCloud cloud{particles.reference};
   KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
-  std::vector<int> row_size(n, 0);
   FamilySizes sizes;
+  sizes.members.assign(n, 0);
   sizes.nearest.assign(n, std::numeric_limits<double>::infinity());
 #pragma omp parallel
   {
     std::vector<std::pair<std::uint32_t, double>> matches;
 #pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i) {
+    for (int i = first; i < end; ++i) {
       double nearest = std::numeric_limits<double>::infinity();
       search_family(tree, particles, horizon_of_body, i, matches, [&](int, double squared) {
-        ++row_size[i];
+        ++sizes.members[i];
         nearest = std::min(nearest, squared);
       });
       sizes.nearest[i] = std::sqrt(nearest);
     }
   }
-  long long total = 0;
-  sizes.offsets.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) {
-    total += row_size[i];
-    if (total > std::numeric_limits<int>::max())
-      throw std::length_error(
-          fmt::format("more bonds than the 2^31 this build indexes; coarsen resolution or "
-                      "lower horizon"));
-    sizes.offsets[i + 1] = static_cast<int>(total);
-  }
   return sizes;
 }
 
+std::vector<int> FamilySizes::offsets() const {
+  std::vector<int> offsets(members.size() + 1, 0);
+  long long total = 0;
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    total += members[i];
+    if (total > std::numeric_limits<int>::max())
+      throw std::length_error(
+          "more bonds than the 2^31 this build indexes; coarsen resolution or lower horizon");
+    offsets[i + 1] = static_cast<int>(total);
+  }
+  return offsets;
+}
+
 Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
-                        const FamilySizes& sizes, int begin, int end) {
+                        const std::vector<int>& offsets, int begin, int end) {
   const int n = particles.count();
   std::vector<char> keep(n, absent);
   std::fill(keep.begin() + begin, keep.begin() + end, whole_row);
@@ -196,9 +200,9 @@ Families split_families(const Particles& particles, const std::vector<double>& h
   }
   Families f = families_of(particles, horizon_of_body, keep, begin, end);
   for (int i = begin; i < end; ++i)
-    if (f.offsets[i + 1] - f.offsets[i] != sizes.offsets[i + 1] - sizes.offsets[i])
+    if (f.offsets[i + 1] - f.offsets[i] != offsets[i + 1] - offsets[i])
       throw std::logic_error("split_families: a family's size differs from its count");
-  f.global_offsets = sizes.offsets;
+  f.global_offsets = offsets;
   f.own_begin = begin;
   f.own_end = end;
   return f;

@@ -65,15 +65,19 @@ Families build_families(const Particles& particles, const std::vector<double>& h
 // What a split over ranks needs before any family is kept: each particle's number of family
 // members and the distance to its nearest member (+∞ without one).
 struct FamilySizes {
-  std::vector<int> offsets;     // the whole families' CSR offsets
+  std::vector<int> members;     // per particle
   std::vector<double> nearest;  // per particle
+  // The whole families' CSR offsets. Throws std::length_error past the 2^31 bonds of int.
+  std::vector<int> offsets() const;
 };
-FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body);
+// Of the particles [first, end); the others get 0 members and +∞.
+FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body,
+                           int first, int end);
 
 // The rows [begin, end) of the whole families, and of their members' rows (the ghosts) the bonds
-// to those rows; the other rows empty (Families above); `sizes` from count_families.
+// to those rows; the other rows empty (Families above); `offsets` from count_families.
 Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
-                        const FamilySizes& sizes, int begin, int end);
+                        const std::vector<int>& offsets, int begin, int end);
 
 // Reorders particles along a Morton curve of cell size `cell` so that families are near in
 // memory. Returns the permutation: new index k holds the particle that had index order[k].

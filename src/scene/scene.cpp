@@ -127,15 +127,23 @@ void build_scene_families(Scene& scene, const RowSplit& split) {
         });
     return;
   }
-  const FamilySizes sizes = count_families(scene.particles, scene.horizon_of_body);
+  const long n = scene.particles.count();
+  const bool shared = static_cast<bool>(split.share_counts);
+  FamilySizes sizes = count_families(
+      scene.particles, scene.horizon_of_body,
+      shared ? static_cast<int>(n * split.part / split.parts) : 0,
+      shared ? static_cast<int>(n * (split.part + 1) / split.parts) : static_cast<int>(n));
+  if (shared) split.share_counts(sizes);
   check_families(
-      scene, [&sizes](int i) { return sizes.offsets[i + 1] - sizes.offsets[i]; },
+      scene, [&sizes](int i) { return sizes.members[i]; },
       [&sizes](int i) { return sizes.nearest[i]; });
-  scene.boundaries = split.boundaries(sizes.offsets);
+  const std::vector<int> offsets = sizes.offsets();
+  sizes = {};
+  scene.boundaries = split.boundaries(offsets);
   scene.part = split.part;
   scene.families =
-      split_families(scene.particles, scene.horizon_of_body, sizes, scene.boundaries.at(split.part),
-                     scene.boundaries.at(split.part + 1));
+      split_families(scene.particles, scene.horizon_of_body, offsets,
+                     scene.boundaries.at(split.part), scene.boundaries.at(split.part + 1));
 }
 
 }  // namespace

@@ -32,9 +32,14 @@ struct Scene {
 
 // How build_scene splits the rows over ranks: `boundaries` maps the whole families' CSR offsets
 // to the ranks' row ranges (parallel/ownership.hpp), and this rank is `part`. Unset: one rank.
+// With share_counts, each of the `parts` ranks counts the family members of its share of the
+// particles, [part·n/parts, (part + 1)·n/parts), and share_counts fills in the others' from
+// their ranks; without, each rank counts them all.
 struct RowSplit {
   std::function<std::vector<int>(const std::vector<int>& offsets)> boundaries;
   int part = 0;
+  int parts = 1;
+  std::function<void(FamilySizes& sizes)> share_counts;
 };
 
 // Samples every body into particles (one per tet at its barycentre, paper §5.2, or read from a

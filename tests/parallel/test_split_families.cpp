@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/run_ranks.hpp"
 #include "fracture/fragments.hpp"
 #include "linear/nearest_bonds.hpp"
 #include "model/model.hpp"
@@ -20,13 +21,14 @@
 namespace fissure {
 namespace {
 
-// The slab built again, split over the ranks as `fissure run` splits it.
+// The slab built again, split over the ranks as `fissure run` splits it (each rank counting
+// its share of the families); on one rank too, into one part.
 Scene split_slab(const Scene& whole) {
-  const int parts = test::ranks();
-  return build_scene(whole.config, {[parts](const std::vector<int>& offsets) {
-                                      return split_rows_by_bonds(offsets, parts);
-                                    },
-                                    test::rank()});
+  RowSplit split = RunRanks::split_over(PETSC_COMM_WORLD);
+  if (!split.boundaries)
+    split = {
+        [](const std::vector<int>& offsets) { return split_rows_by_bonds(offsets, 1); }, 0, 1, {}};
+  return build_scene(whole.config, split);
 }
 
 TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
