@@ -54,7 +54,7 @@ BondBreaking::BondBreaking(const Scene& scene, Model& model)
       for (const Crack& crack : scene.config.initial_cracks)
         if (crosses(crack, &p.reference[3 * i], &p.reference[3 * j])) {
           remove(i, b);
-          if (families_.reverse[b] >= 0) remove(j, families_.reverse[b]);  // row j kept here
+          remove(j, families_.reverse[b]);
           removed += 2;
           break;
         }

@@ -39,10 +39,6 @@ std::uint64_t spread_bits(std::uint64_t v) {
   return v;
 }
 
-}  // namespace
-
-namespace {
-
 // The members of particle i: every other particle of its body within its horizon, passed to
 // visit(j, squared distance) in the k-d tree's order.
 template <class Visit>
@@ -60,24 +56,38 @@ void search_family(const KdTree& tree, const Particles& particles,
   }
 }
 
-// How families_of keeps a row.
-enum Keep : char { absent = 0, whole_row = 1, own_members = 2 };
+// The k-d tree of every particle's reference position, built once per search of the families.
+struct FamilySearch {
+  explicit FamilySearch(const Particles& particles)
+      : cloud{particles.reference}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    tree.buildIndex();
+  }
+  PointCloud cloud;
+  KdTree tree;
+};
 
-// The families of the rows `keep` marks (every row whole when it is empty), the others empty; a
-// row marked own_members keeps only its members in [own_begin, own_end), and each such bond's
-// position in its whole row goes to trimmed_position.
-Families families_of(const Particles& particles, const std::vector<double>& horizon_of_body,
-                     const std::vector<char>& keep, int own_begin = 0, int own_end = 0) {
-  const int n = particles.count();
-  PointCloud cloud{particles.reference};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
-  const auto kept = [&keep](int i) { return keep.empty() || keep[i] != absent; };
+// The members of consecutive rows, sorted within each row.
+struct RowMembers {
+  std::vector<int> size;       // per row
+  std::vector<int> members;    // CSR order
+  std::vector<int> positions;  // of a trimmed row's kept member: its position in the whole row
+};
 
-  // Each thread searches one contiguous block of rows (schedule(static) hands out blocks in
-  // thread order) into one flat buffer, so the rows join in CSR order. Flat buffers instead of a
-  // vector per row: those small blocks, once freed, would stay resident for the whole run.
-  std::vector<int> row_size(n, 0);
+// Of a split (split_families): the ghosts' rows keep only their members in [begin, end).
+struct Trim {
+  const std::vector<char>& ghost;
+  int begin, end;
+};
+
+// The members of rows [first, end); with `trim`, only of the ghosts' rows, trimmed. Each thread
+// searches one contiguous block of rows (schedule(static) hands out blocks in thread order) into
+// one flat buffer, so the rows join in CSR order. Flat buffers instead of a vector per row: those
+// small blocks, once freed, would stay resident for the whole run.
+RowMembers search_rows(const FamilySearch& search, const Particles& particles,
+                       const std::vector<double>& horizon_of_body, int first, int end,
+                       const Trim* trim) {
+  RowMembers rows;
+  rows.size.assign(end - first, 0);
   std::vector<std::vector<int>> block(omp_get_max_threads()), positions(block.size());
 #pragma omp parallel
   {
@@ -85,61 +95,76 @@ Families families_of(const Particles& particles, const std::vector<double>& hori
     std::vector<int>& mine = block[omp_get_thread_num()];
     std::vector<int>& my_positions = positions[omp_get_thread_num()];
 #pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i) {
-      if (!kept(i)) continue;
+    for (int i = first; i < end; ++i) {
+      if (trim && !trim->ghost[i]) continue;
       const std::size_t start = mine.size();
-      search_family(tree, particles, horizon_of_body, i, matches,
+      search_family(search.tree, particles, horizon_of_body, i, matches,
                     [&mine](int j, double) { mine.push_back(j); });
       std::sort(mine.begin() + static_cast<std::ptrdiff_t>(start), mine.end());
-      if (!keep.empty() && keep[i] == own_members) {
-        std::size_t end = start;
+      if (trim) {
+        std::size_t kept = start;
         for (std::size_t k = start; k < mine.size(); ++k)
-          if (mine[k] >= own_begin && mine[k] < own_end) {
+          if (mine[k] >= trim->begin && mine[k] < trim->end) {
             my_positions.push_back(static_cast<int>(k - start));
-            mine[end++] = mine[k];
+            mine[kept++] = mine[k];
           }
-        mine.resize(end);
+        mine.resize(kept);
       }
-      row_size[i] = static_cast<int>(mine.size() - start);
+      rows.size[i - first] = static_cast<int>(mine.size() - start);
     }
   }
+  for (std::vector<int>& part : block) {
+    rows.members.insert(rows.members.end(), part.begin(), part.end());
+    std::vector<int>().swap(part);
+  }
+  for (const std::vector<int>& part : positions)
+    rows.positions.insert(rows.positions.end(), part.begin(), part.end());
+  return rows;
+}
 
-  long long total = 0;
-  for (const int size : row_size) total += size;
-  if (total > std::numeric_limits<int>::max())
-    throw std::length_error(fmt::format(
-        "{} bonds exceed the 2^31 this build indexes; coarsen resolution or lower horizon", total));
+// The families of the rows `parts` hold, which follow each other from row 0 to the last, with
+// |ξ| and the reverse bonds.
+Families assemble(const Particles& particles, std::vector<RowMembers> parts) {
+  const int n = particles.count();
   Families f;
   f.offsets.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) f.offsets[i + 1] = f.offsets[i] + row_size[i];
+  long long total = 0;
+  int i = 0;
+  for (const RowMembers& part : parts)
+    for (const int size : part.size) {
+      total += size;
+      if (total > std::numeric_limits<int>::max())
+        throw std::length_error(
+            "more bonds than the 2^31 this build indexes; coarsen resolution or lower horizon");
+      f.offsets[++i] = static_cast<int>(total);
+    }
   f.neighbors.reserve(f.offsets[n]);
-  for (std::vector<int>& rows : block) {
-    f.neighbors.insert(f.neighbors.end(), rows.begin(), rows.end());
-    std::vector<int>().swap(rows);
+  for (RowMembers& part : parts) {
+    f.neighbors.insert(f.neighbors.end(), part.members.begin(), part.members.end());
+    f.trimmed_position.insert(f.trimmed_position.end(), part.positions.begin(),
+                              part.positions.end());
+    part = {};
   }
-  for (const std::vector<int>& rows : positions)
-    f.trimmed_position.insert(f.trimmed_position.end(), rows.begin(), rows.end());
   f.reference_length.resize(f.offsets[n]);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double* xi = &particles.reference[3 * i];
-    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+  for (int r = 0; r < n; ++r) {
+    const double* xi = &particles.reference[3 * r];
+    for (int b = f.offsets[r]; b < f.offsets[r + 1]; ++b) {
       const double* xj = &particles.reference[3 * f.neighbors[b]];
       f.reference_length[b] =
           std::sqrt((xj[0] - xi[0]) * (xj[0] - xi[0]) + (xj[1] - xi[1]) * (xj[1] - xi[1]) +
                     (xj[2] - xi[2]) * (xj[2] - xi[2]));
     }
   }
+  // every member's row is kept (its whole row, or as a ghost its bonds to the own rows)
   f.reverse.resize(f.offsets[n]);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i)
-    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+  for (int r = 0; r < n; ++r)
+    for (int b = f.offsets[r]; b < f.offsets[r + 1]; ++b) {
       const int j = f.neighbors[b];
       const auto row = f.neighbors.begin();
       f.reverse[b] =
-          kept(j) ? static_cast<int>(
-                        std::lower_bound(row + f.offsets[j], row + f.offsets[j + 1], i) - row)
-                  : -1;
+          static_cast<int>(std::lower_bound(row + f.offsets[j], row + f.offsets[j + 1], r) - row);
     }
   return f;
 }
@@ -147,15 +172,16 @@ Families families_of(const Particles& particles, const std::vector<double>& hori
 }  // namespace
 
 Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
-  return families_of(particles, horizon_of_body, {});
+  const FamilySearch search(particles);
+  std::vector<RowMembers> rows;
+  rows.push_back(search_rows(search, particles, horizon_of_body, 0, particles.count(), nullptr));
+  return assemble(particles, std::move(rows));
 }
 
 FamilySizes count_families(const Particles& particles, const std::vector<double>& horizon_of_body,
                            int first, int end) {
   const int n = particles.count();
-  PointCloud cloud{particles.reference};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+  const FamilySearch search(particles);
   FamilySizes sizes;
   sizes.members.assign(n, 0);
   sizes.nearest.assign(n, std::numeric_limits<double>::infinity());
@@ -165,7 +191,7 @@ FamilySizes count_families(const Particles& particles, const std::vector<double>
 #pragma omp for schedule(static)
     for (int i = first; i < end; ++i) {
       double nearest = std::numeric_limits<double>::infinity();
-      search_family(tree, particles, horizon_of_body, i, matches, [&](int, double squared) {
+      search_family(search.tree, particles, horizon_of_body, i, matches, [&](int, double squared) {
         ++sizes.members[i];
         nearest = std::min(nearest, squared);
       });
@@ -188,20 +214,24 @@ std::vector<int> FamilySizes::offsets() const {
   return offsets;
 }
 
+// The own rows are searched once: their members name the ghosts, whose rows are searched next.
 Families split_families(const Particles& particles, const std::vector<double>& horizon_of_body,
                         const std::vector<int>& offsets, int begin, int end) {
   const int n = particles.count();
-  std::vector<char> keep(n, absent);
-  std::fill(keep.begin() + begin, keep.begin() + end, whole_row);
-  {
-    const Families own = families_of(particles, horizon_of_body, keep);
-    for (int b = own.offsets[begin]; b < own.offsets[end]; ++b)
-      if (keep[own.neighbors[b]] == absent) keep[own.neighbors[b]] = own_members;
-  }
-  Families f = families_of(particles, horizon_of_body, keep, begin, end);
+  const FamilySearch search(particles);
+  RowMembers own = search_rows(search, particles, horizon_of_body, begin, end, nullptr);
   for (int i = begin; i < end; ++i)
-    if (f.offsets[i + 1] - f.offsets[i] != offsets[i + 1] - offsets[i])
+    if (own.size[i - begin] != offsets[i + 1] - offsets[i])
       throw std::logic_error("split_families: a family's size differs from its count");
+  std::vector<char> ghost(n, 0);
+  for (const int j : own.members)
+    if (j < begin || j >= end) ghost[j] = 1;
+  const Trim trim{ghost, begin, end};
+  std::vector<RowMembers> rows;
+  rows.push_back(search_rows(search, particles, horizon_of_body, 0, begin, &trim));
+  rows.push_back(std::move(own));
+  rows.push_back(search_rows(search, particles, horizon_of_body, end, n, &trim));
+  Families f = assemble(particles, std::move(rows));
   f.global_offsets = offsets;
   f.own_begin = begin;
   f.own_end = end;
