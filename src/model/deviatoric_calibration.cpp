@@ -275,7 +275,7 @@ DeviatoricCalibration deviatoric_weights(const Particles& particles, const Famil
   {
     RowScratch r;
 #pragma omp for schedule(dynamic, 64)
-    for (int i = 0; i < n; ++i) {
+    for (int i = families.first_own_row(); i < families.end_own_row(); ++i) {
       const int begin = families.offsets[i], bonds = families.offsets[i + 1] - begin;
       const int body = particles.body[i];
       // B_i = 15μ_i/m_i, as the model (notes §6)
@@ -328,7 +328,7 @@ DeviatoricCalibration deviatoric_weights(const Particles& particles, const Famil
       result.rows[i] = outcome;
     }
   }
-  for (int i = 0; i < n; ++i) {
+  for (int i = families.first_own_row(); i < families.end_own_row(); ++i) {
     result.exact_rows += result.residual[i] <= kExactDeviatoricResidual;
     result.fallback_rows += result.rows[i] != DeviatoricRow::calibrated;
     result.largest_residual = std::max(result.largest_residual, result.residual[i]);

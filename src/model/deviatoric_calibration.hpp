@@ -64,7 +64,8 @@ struct DeviatoricCalibration {
 // where m_i = 0) and the target T_i = 2μ_i shape_of_body[particles.body[i]] (μ_i > 0). The residual
 // is the largest relative error of the deviatoric energy over all small homogeneous strains,
 // computed from the rounded w (g = B_i w). Throws std::invalid_argument if a body has no shape or
-// its shape is not symmetric positive definite.
+// its shape is not symmetric positive definite. Over several ranks the own rows only
+// (Families::first_own_row), and the counts are theirs: the ghosts' w come from their ranks.
 DeviatoricCalibration deviatoric_weights(const Particles& particles, const Families& families,
                                          const std::vector<float>& omega,
                                          const std::vector<double>& shear_modulus,

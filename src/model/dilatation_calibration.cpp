@@ -21,12 +21,11 @@ Vector6 strain_projection(const double u[3]) {
 std::vector<float> dilatation_weights(const Particles& particles, const Families& families,
                                       const std::vector<float>& omega,
                                       const std::vector<double>& weighted_volume) {
-  const int n = particles.count();
   const auto& x = particles.reference;
   const auto& V = particles.volume;
   std::vector<float> weights(families.directed_bonds());
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = families.first_own_row(); i < families.end_own_row(); ++i) {
     const int begin = families.offsets[i], end = families.offsets[i + 1];
     auto direction = [&](int b, double u[3]) {
       const int j = families.neighbors[b];

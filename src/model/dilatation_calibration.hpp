@@ -17,7 +17,8 @@ namespace fissure {
 
 // c_ij per bond (CSR order), rounded to single precision as the model keeps them, from the
 // model's single-precision ω. Falls back to 3ω|ξ|/m_i for a family too small or too flat to
-// determine K_i.
+// determine K_i. Over several ranks the own rows only (Families::first_own_row): the ghosts' come
+// from their ranks (LpsModel::distribute), 0 until then.
 std::vector<float> dilatation_weights(const Particles& particles, const Families& families,
                                       const std::vector<float>& omega,
                                       const std::vector<double>& weighted_volume);

@@ -55,8 +55,8 @@ LpsModel::LpsModel(const Particles& particles, const Families& families, Materia
   }
   bond_reverse_weight_.resize(bonds);
 #pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < bonds; ++b)  // a row not kept here (Families): never read
-    bond_reverse_weight_[b] = families.reverse[b] >= 0 ? bond_weight_[families.reverse[b]] : 0.0f;
+  for (std::size_t b = 0; b < bonds; ++b)
+    bond_reverse_weight_[b] = bond_weight_[families.reverse[b]];
   if (plastic_) set_up_plasticity(*plasticity);  // from m_i
   if (surface_correction == SurfaceCorrection::full) calibrate_deviatoric_weights();
 }
@@ -80,17 +80,10 @@ void LpsModel::calibrate_deviatoric_weights() {
                          weighted_volume_, shape_of_body);
   bond_deviatoric_ = std::move(calibration.weights);
   // over the rows this rank owns (all on one rank); distribute() sums them over the ranks
-  int exact = 0, fallback = 0;
-  double largest = 0;
-  for (int i = families_.first_own_row(); i < families_.end_own_row(); ++i) {
-    exact += calibration.residual[i] <= kExactDeviatoricResidual;
-    fallback += calibration.rows[i] != DeviatoricRow::calibrated;
-    largest = std::max(largest, calibration.residual[i]);
-  }
   statistics_ = {{"deviatoric_rows", families_.end_own_row() - families_.first_own_row()},
-                 {"deviatoric_exact_rows", exact},
-                 {"deviatoric_fallback_rows", fallback},
-                 {"deviatoric_largest_residual", largest}};
+                 {"deviatoric_exact_rows", calibration.exact_rows},
+                 {"deviatoric_fallback_rows", calibration.fallback_rows},
+                 {"deviatoric_largest_residual", calibration.largest_residual}};
   const auto& off = families_.offsets;
   const auto& xi = families_.reference_length;
   bond_reverse_deviatoric_.resize(bond_deviatoric_.size());
@@ -98,8 +91,7 @@ void LpsModel::calibrate_deviatoric_weights() {
   for (int i = 0; i < n; ++i) {
     double M = 0;
     for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int r = families_.reverse[b];
-      bond_reverse_deviatoric_[b] = r >= 0 ? bond_deviatoric_[r] : 0.0f;
+      bond_reverse_deviatoric_[b] = bond_deviatoric_[families_.reverse[b]];
       M += double(bond_deviatoric_[b]) * xi[b] * xi[b] *
            particles_.volume[families_.neighbors[b]];  // M_i = Σ w|ξ|²V_j
     }
@@ -480,8 +472,7 @@ void LpsModel::restore_state(const NamedArrays& state) {
   if (plastic_) {
     take("model.plastic_extension", plastic_extension_);
     for (std::size_t b = 0; b < plastic_extension_.size(); ++b)
-      if (families_.reverse[b] >= 0)
-        reverse_plastic_extension_[families_.reverse[b]] = plastic_extension_[b];
+      reverse_plastic_extension_[families_.reverse[b]] = plastic_extension_[b];
     auto flowed = [](double ep) { return ep != 0 || std::signbit(ep); };
     for (int i = 0; i < particles_.count(); ++i) {
       plastic_row_[i] = 0;
