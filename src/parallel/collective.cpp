@@ -67,8 +67,6 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, co
   return gathered;
 }
 
-}  // namespace
-
 // The first entry of this rank's range in an array of the global numbering.
 template <class T>
 const T* first_owned(MPI_Comm comm, const std::vector<int>& boundaries, const T* values,
@@ -77,6 +75,8 @@ const T* first_owned(MPI_Comm comm, const std::vector<int>& boundaries, const T*
   const int rank = rank_in_split(comm, boundaries, boundaries.back(), "gather_owned");
   return values + static_cast<std::size_t>(boundaries[rank]) * width;
 }
+
+}  // namespace
 
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                  const double* values, int width) {

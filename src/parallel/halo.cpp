@@ -24,18 +24,6 @@ std::vector<int> ghosts_of(const Families& families, const std::vector<int>& bou
   return ghosts;
 }
 
-}  // namespace
-
-Halo::Halo(MPI_Comm comm, const Families& families, std::vector<int> boundaries)
-    : exchange_(comm, boundaries, ghosts_of(families, boundaries, comm)), families_(&families) {}
-
-const SharedBonds& Halo::shared_bonds(const Families& families) const {
-  if (&families != families_)
-    throw std::invalid_argument("Halo::shared_bonds: not the families the halo was built on");
-  if (!shared_bonds_) shared_bonds_ = std::make_shared<SharedBonds>(share_bonds(*this, families));
-  return *shared_bonds_;
-}
-
 // A rank's bonds are the CSR range of its rows: bond b of row i pairs with bond reverse[b] of
 // row j, in the range of j's rank. The forest numbers bonds as the whole families do; where this
 // rank keeps only some rows (Families), its own bonds start at offsets[begin] and each reverse
@@ -65,6 +53,18 @@ SharedBonds share_bonds(const Halo& halo, const Families& families) {
       std::make_unique<IndexExchange>(halo.comm(), std::move(bond_boundaries), std::move(needed),
                                       std::move(slots), families.offsets[halo.begin()]);
   return shared;
+}
+
+}  // namespace
+
+Halo::Halo(MPI_Comm comm, const Families& families, std::vector<int> boundaries)
+    : exchange_(comm, boundaries, ghosts_of(families, boundaries, comm)), families_(&families) {}
+
+const SharedBonds& Halo::shared_bonds(const Families& families) const {
+  if (&families != families_)
+    throw std::invalid_argument("Halo::shared_bonds: not the families the halo was built on");
+  if (!shared_bonds_) shared_bonds_ = std::make_shared<SharedBonds>(share_bonds(*this, families));
+  return *shared_bonds_;
 }
 
 }  // namespace fissure

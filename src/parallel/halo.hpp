@@ -33,7 +33,7 @@ class Halo {
   void fill(double* values, int width) const { exchange_.fill(values, width); }
   // Bytes one fill of `width` doubles receives on this rank.
   std::size_t received_bytes(int width) const { return ghosts().size() * width * sizeof(double); }
-  // The pairs this rank shares with others (share_bonds below) for the families it was built
+  // The pairs this rank shares with others (SharedBonds below) for the families it was built
   // on, made at the first call and kept, so that the model and the fracture post-step use one
   // star forest. Collective at the first call; throws std::invalid_argument for other families.
   const SharedBonds& shared_bonds(const Families& families) const;
@@ -52,7 +52,5 @@ struct SharedBonds {
   std::vector<int> bonds, rows;
   std::unique_ptr<IndexExchange> reverses;
 };
-// Collective over the halo's ranks.
-SharedBonds share_bonds(const Halo& halo, const Families& families);
 
 }  // namespace fissure

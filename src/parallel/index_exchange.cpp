@@ -48,8 +48,7 @@ IndexExchange::IndexExchange(MPI_Comm comm, std::vector<int> boundaries, std::ve
       throw std::invalid_argument(fmt::format(
           "IndexExchange: needed entry {} is outside [0, {}), this rank's own or out of order",
           needed_[k], boundaries_.back()));
-  if (slots_.empty()) slots_ = needed_;
-  if (slots_.size() != needed_.size())
+  if (!slots_.empty() && slots_.size() != needed_.size())
     throw std::invalid_argument("IndexExchange: one slot per needed entry expected");
   if (own_first_ < 0) own_first_ = begin();
   std::vector<PetscSFNode> remote(needed_.size());
@@ -90,8 +89,9 @@ void IndexExchange::fill_bytes(void* values, std::size_t entry_bytes) const {
   const unsigned char* roots = bytes + static_cast<std::size_t>(own_first_) * entry_bytes;
   check(PetscSFBcastBegin(forest_, type, roots, buffer_.data(), MPI_REPLACE), "PetscSFBcastBegin");
   check(PetscSFBcastEnd(forest_, type, roots, buffer_.data(), MPI_REPLACE), "PetscSFBcastEnd");
+  const std::vector<int>& slots = slots_.empty() ? needed_ : slots_;
   for (std::size_t k = 0; k < needed_.size(); ++k)
-    std::memcpy(bytes + static_cast<std::size_t>(slots_[k]) * entry_bytes,
+    std::memcpy(bytes + static_cast<std::size_t>(slots[k]) * entry_bytes,
                 buffer_.data() + k * entry_bytes, entry_bytes);
 }
 

@@ -51,7 +51,7 @@ class IndexExchange {
   int rank_ = 0;
   std::vector<int> boundaries_;
   std::vector<int> needed_;
-  std::vector<int> slots_;  // where each needed entry is written
+  std::vector<int> slots_;  // where each needed entry is written; empty: at needed_
   long own_first_ = 0;      // where this rank's own entries start
   // Roots: this rank's own entries; leaves: the needed ones, in a contiguous buffer.
   PetscSF forest_ = nullptr;
