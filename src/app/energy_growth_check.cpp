@@ -5,17 +5,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel/collective.hpp"
+#include "parallel/halo.hpp"
+
 namespace fissure {
 
-EnergyGrowthCheck::EnergyGrowthCheck(const Scene& scene, const EnergyLedger& ledger)
+EnergyGrowthCheck::EnergyGrowthCheck(const Scene& scene, const EnergyLedger& ledger,
+                                     const Halo* halo)
     : ledger_(ledger) {
   const Vec3& g = scene.config.gravity;
   const double g_norm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  for (int i = 0; i < scene.particles.count(); ++i) {
+  // over several ranks each sums its own rows
+  const int begin = halo ? halo->begin() : 0, end = halo ? halo->end() : scene.particles.count();
+  for (int i = begin; i < end; ++i) {
     const double* x = &scene.particles.reference[3 * i];
     round_off_energy_ += 1e-12 * scene.particles.mass[i] * g_norm *
                          std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
   }
+  if (halo) round_off_energy_ = sum_over_ranks(halo->comm(), round_off_energy_);
 }
 
 void EnergyGrowthCheck::after_step(const RunParts& run, const Step& step) {

@@ -7,9 +7,12 @@
 
 namespace fissure {
 
+class Halo;
+
 class EnergyGrowthCheck : public Observer {
  public:
-  EnergyGrowthCheck(const Scene& scene, const EnergyLedger& ledger);
+  // Over several ranks `halo` is theirs (null on one). Collective.
+  EnergyGrowthCheck(const Scene& scene, const EnergyLedger& ledger, const Halo* halo = nullptr);
   std::string name() const override { return "energy_growth"; }
   void after_step(const RunParts& run, const Step& step) override;
   NamedArrays saved_state() const override;

@@ -16,7 +16,7 @@ std::vector<OutputKind>& kinds() {
         {"probes",
          {},
          nullptr,
-         [](const OutputContext& c) { return std::make_unique<ProbesOutput>(c.scene, c.ledger); }},
+         [](const OutputContext& c) { return std::make_unique<ProbesOutput>(c.scene, c.ledger, c.halo); }},
         "output");
     add_kind(
         builtin,

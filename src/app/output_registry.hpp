@@ -17,12 +17,16 @@
 
 namespace fissure {
 
-// What an output's constructor gets: the scene, the energy ledger it may sample, and its own
-// options (null where it has none or the config was made in code).
+class Halo;
+
+// What an output's constructor gets: the scene, the energy ledger it may sample, its own
+// options (null where it has none or the config was made in code), and over several ranks
+// their halo (null on one).
 struct OutputContext {
   const Scene& scene;
   EnergyLedger& ledger;
   const OutputOptions* options;
+  const Halo* halo = nullptr;
 };
 
 struct OutputKind {

@@ -5,6 +5,8 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "parallel/collective.hpp"
+#include "parallel/halo.hpp"
 
 namespace fissure {
 
@@ -21,22 +23,46 @@ double max_speed(const std::vector<double>& velocity, int begin, int end) {
   return std::sqrt(largest);
 }
 
+// Per probe, where each rank's members start among the whole scene's, and their count last.
+std::vector<std::vector<int>> member_boundaries(MPI_Comm comm,
+                                                const std::vector<std::vector<int>>& members) {
+  int size = 1;
+  if (MPI_Comm_size(comm, &size) != MPI_SUCCESS) throw RunError("MPI: MPI_Comm_size failed");
+  const int probes = static_cast<int>(members.size());
+  std::vector<int> own, all(std::size_t(size) * probes);
+  for (const auto& m : members) own.push_back(static_cast<int>(m.size()));
+  if (MPI_Allgather(own.data(), probes, MPI_INT, all.data(), probes, MPI_INT, comm) !=
+      MPI_SUCCESS)
+    throw RunError("MPI: MPI_Allgather failed");
+  std::vector<std::vector<int>> boundaries(probes, std::vector<int>(size + 1, 0));
+  for (int p = 0; p < probes; ++p)
+    for (int r = 0; r < size; ++r)
+      boundaries[p][r + 1] = boundaries[p][r] + all[std::size_t(r) * probes + p];
+  return boundaries;
+}
+
 }  // namespace
 
-ProbesOutput::ProbesOutput(const Scene& scene, EnergyLedger& ledger)
+ProbesOutput::ProbesOutput(const Scene& scene, EnergyLedger& ledger, const Halo* halo)
     : ledger_(ledger),
       path_(scene.config.output.dir + "/probes.csv"),
-      members_(probe_members(scene.config, scene.particles)),
+      members_(probe_members(scene.config, scene.particles, halo ? halo->begin() : 0,
+                             halo ? halo->end() : scene.particles.count())),
+      comm_(halo ? halo->comm() : MPI_COMM_NULL),
       schedule_(scene.config.output.probe_every, 0.0) {
-  for (const auto& members : members_)
-    member_rows_.insert(member_rows_.end(), members.begin(), members.end());
+  std::vector<double> counts;
+  for (const auto& members : members_) counts.push_back(static_cast<double>(members.size()));
+  if (halo) {
+    member_boundaries_ = member_boundaries(comm_, members_);
+    sum_over_ranks(comm_, counts);
+  }
+  check_probe_members(scene.config, counts);
 }
 
 void ProbesOutput::start(const RunParts& run) {
   run.ranks.write([&] {
     if (run.ranks.root())
-      file_ = std::make_unique<ProbesCsv>(path_, run.config, run.scene.particles,
-                                          std::move(members_), ledger_.names());
+      file_ = std::make_unique<ProbesCsv>(path_, run.config, ledger_.names());
   });
 }
 
@@ -51,8 +77,7 @@ void ProbesOutput::resume(const RunParts& run, const NamedArrays& state) {
                      "shorter than when the checkpoint was written: cannot resume without the "
                      "rows before it");
   std::filesystem::resize_file(path_, static_cast<std::uintmax_t>(bytes));
-  file_ = std::make_unique<ProbesCsv>(path_, run.config, run.scene.particles, std::move(members_),
-                                      ledger_.names(), true);
+  file_ = std::make_unique<ProbesCsv>(path_, run.config, ledger_.names(), true);
 }
 
 void ProbesOutput::after_step(const RunParts& run, const Step&) {
@@ -71,16 +96,21 @@ void ProbesOutput::write_row(const RunParts& run) {
       std::max(max_speed_, ranks.max(max_speed(run.state.velocity, ranks.begin(), ranks.end())));
   std::vector<double> columns;
   for (const auto& [name, value] : ledger_.entries()) columns.push_back(value);
-  std::vector<double> position;  // over several ranks, the members' on the root
-  if (ranks.distributed()) {
-    if (!members_to_root_) members_to_root_ = ranks.to_root(member_rows_);
-    position = run.state.position;
-    members_to_root_->fill(position.data(), 3);
+  // each member's position and displacement; over several ranks gathered on the root
+  std::vector<std::vector<double>> members(members_.size());
+  const std::vector<double>& y = run.state.position;
+  const std::vector<double>& x = run.scene.particles.reference;
+  for (std::size_t p = 0; p < members_.size(); ++p) {
+    for (const int i : members_[p]) {
+      for (int k = 0; k < 3; ++k) members[p].push_back(y[3 * i + k]);
+      for (int k = 0; k < 3; ++k) members[p].push_back(y[3 * i + k] - x[3 * i + k]);
+    }
+    if (comm_ != MPI_COMM_NULL)
+      members[p] = gather_owned_from(comm_, member_boundaries_[p], members[p].data(), 6);
   }
   ranks.write([&] {
     if (ranks.root())
-      file_->write_row(run.state.time, ledger_.kinetic(), ledger_.elastic(),
-                       ranks.distributed() ? position : run.state.position, columns);
+      file_->write_row(run.state.time, ledger_.kinetic(), ledger_.elastic(), members, columns);
   });
   last_time_ = run.state.time;
 }

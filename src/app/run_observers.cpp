@@ -22,12 +22,12 @@ RunObservers make_run_observers(const Scene& scene, const Dynamics& dynamics,
   EnergyLedger& books = *ledger;
   o.checks.push_back(std::make_unique<FiniteStateCheck>());
   o.checks.push_back(std::move(ledger));
-  o.checks.push_back(std::make_unique<EnergyGrowthCheck>(scene, books));
+  o.checks.push_back(std::make_unique<EnergyGrowthCheck>(scene, books, dynamics.halo()));
   for (const OutputKind& kind : output_kinds()) {
     const OutputOptions* options = nullptr;
     for (const auto& [name, parsed] : scene.config.output.options)
       if (name == kind.name) options = parsed.get();
-    o.outputs.push_back(kind.make({scene, books, options}));
+    o.outputs.push_back(kind.make({scene, books, options, dynamics.halo()}));
   }
   auto checkpoints = std::make_unique<CheckpointOutput>(scene.config, std::move(observers_state));
   o.checkpoints = checkpoints.get();

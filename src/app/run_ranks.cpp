@@ -86,7 +86,8 @@ RowSplit RunRanks::split_over(MPI_Comm comm) {
           rank, size, share_counts};
 }
 
-RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.count()) {
+RunRanks::RunRanks(const Scene& scene, MPI_Comm comm)
+    : end_(scene.particles.count()), particles_(scene.families.total_rows()) {
   comm = run_comm(comm, size_, rank_);
   if (comm == MPI_COMM_NULL) {
     if (!scene.boundaries.empty())
@@ -102,23 +103,11 @@ RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.cou
     throw std::invalid_argument(
         fmt::format("RunRanks: the scene was split for part {} of {}, not for rank {} of {}",
                     scene.part, boundaries.size() - 1, rank_, size_));
-  const std::vector<int>& offsets = families.whole() ? families.offsets : families.global_offsets;
-  for (const int row : boundaries) bond_boundaries_.push_back(offsets[row]);
-  begin_ = boundaries[rank_];
-  end_ = boundaries[rank_ + 1];
+  halo_ = std::make_unique<Halo>(comm, families, std::move(boundaries));
+  begin_ = halo_->begin();
+  end_ = halo_->end();
   first_bond_ = families.offsets[begin_];
   for (int i = begin_; i < end_; ++i) rows_.push_back(i);
-  halo_ = std::make_unique<Halo>(comm, scene.families, std::move(boundaries));
-}
-
-std::unique_ptr<IndexExchange> RunRanks::to_root(const std::vector<int>& particles) const {
-  std::vector<int> needed;
-  if (root())
-    for (const int i : particles)
-      if (i < begin_ || i >= end_) needed.push_back(i);
-  std::sort(needed.begin(), needed.end());
-  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
-  return std::make_unique<IndexExchange>(comm_, halo_->boundaries(), std::move(needed));
 }
 
 void RunRanks::sum(std::vector<double>& values) const {
@@ -137,18 +126,19 @@ int RunRanks::min(int value) const { return distributed() ? min_over_ranks(comm_
 
 std::vector<double> RunRanks::gather(const std::vector<double>& values, int width) const {
   if (!distributed()) return values;
-  return gather_owned(comm_, halo_->boundaries(), values.data(), width);
+  return gather_owned_from(comm_, halo_->boundaries(), values.data() + std::ptrdiff_t(width) * begin_,
+                           width);
 }
 
 std::vector<std::uint8_t> RunRanks::gather_bonds(const std::vector<std::uint8_t>& values) const {
   // empty on every rank without fracture
   if (!distributed() || values.empty()) return values;
-  return gather_owned_from(comm_, bond_boundaries_, values.data() + first_bond_, 1);
+  return gather_owned_from(comm_, halo_->bond_boundaries(), values.data() + first_bond_, 1);
 }
 
 std::vector<double> RunRanks::gather_bonds(const std::vector<double>& values) const {
   if (!distributed() || values.empty()) return values;
-  return gather_owned_from(comm_, bond_boundaries_, values.data() + first_bond_, 1);
+  return gather_owned_from(comm_, halo_->bond_boundaries(), values.data() + first_bond_, 1);
 }
 
 void RunRanks::agree(const std::function<void()>& work) const {

@@ -38,8 +38,11 @@ class RunRanks {
   bool root() const { return rank_ == 0; }
   // The ranks' communicator, when distributed().
   MPI_Comm comm() const { return comm_; }
+  // This rank's own rows, in the scene's numbering (over several ranks its own, Families).
   int begin() const { return begin_; }
   int end() const { return end_; }
+  // The particles of the whole scene.
+  int particles() const { return particles_; }
   // begin() to end(), listed (Model::rows_energy); empty on one rank.
   const std::vector<int>& rows() const { return rows_; }
   // The halo, when distributed().
@@ -52,9 +55,6 @@ class RunRanks {
   // The owned rows of a per-particle array of `width` values per particle, whole on the root
   // (in place on one rank: the array itself); empty elsewhere. Collective.
   std::vector<double> gather(const std::vector<double>& values, int width) const;
-  // The exchange that brings `particles`' entries (of a per-particle array) to the root from
-  // the ranks that own them; the other ranks receive none. Collective.
-  std::unique_ptr<IndexExchange> to_root(const std::vector<int>& particles) const;
   // A per-bond array (CSR order), whole on the root; empty stays empty. Collective.
   std::vector<std::uint8_t> gather_bonds(const std::vector<std::uint8_t>& values) const;
   std::vector<double> gather_bonds(const std::vector<double>& values) const;
@@ -67,9 +67,8 @@ class RunRanks {
 
  private:
   MPI_Comm comm_ = MPI_COMM_NULL;
-  int rank_ = 0, size_ = 1, begin_ = 0, end_ = 0;
+  int rank_ = 0, size_ = 1, begin_ = 0, end_ = 0, particles_ = 0;
   std::vector<int> rows_;
-  std::vector<int> bond_boundaries_;  // the first bond of each rank's rows, and the total
   int first_bond_ = 0;                // this rank's first bond in its families' CSR
   std::unique_ptr<Halo> halo_;
 };

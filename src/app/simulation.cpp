@@ -49,6 +49,7 @@ class Simulation {
   void finish(RunEnd end);
   // Takes the run back to the checkpoint's step; the output after it is dropped.
   void resume(const CheckpointReader& checkpoint);
+  NamedArrays local_rows(NamedArrays arrays) const;
   // Spreads the run over the ranks (ranks_): each advances and breaks its own rows. Throws
   // InputError for an integrator or effect that cannot be distributed yet.
   void distribute();
@@ -83,7 +84,7 @@ Simulation::Simulation(const Config& config, const RunOptions& options)
   options_.progress = options_.progress && ranks_->root();
   summary_.ranks = ranks_->size();
   summary_.integrator = config.integrator.type;
-  summary_.particles = scene_.particles.count();
+  summary_.particles = scene_.families.total_rows();
   summary_.bonds = static_cast<long>(scene_.families.total_directed_bonds() / 2);
   summary_.stable_dt = model_->stable_time_step();
   summary_.model_statistics = model_->statistics();
@@ -126,25 +127,38 @@ void Simulation::distribute() {
   }
 }
 
+// The model's and the integrator's per-particle arrays of a checkpoint (a whole number of values
+// per particle of the whole scene, as CheckpointOutput gathers them) in this rank's rows.
+NamedArrays Simulation::local_rows(NamedArrays arrays) const {
+  const Families& families = scene_.families;
+  const std::size_t particles = families.total_rows();
+  for (auto& [name, values] : arrays)
+    if (!model_->per_bond_state(name) && !values.empty() && values.size() % particles == 0)
+      values = families.localize_rows(values, static_cast<int>(values.size() / particles));
+  return arrays;
+}
+
 void Simulation::resume(const CheckpointReader& c) {
   check_loop_sections(c);
+  // a checkpoint holds the whole scene's particles; over several ranks these rows take theirs
+  const Families& families = scene_.families;
   const std::vector<double> position = c.doubles("state.position");
-  if (position.size() != state_.position.size())
+  if (position.size() != 3 * std::size_t(families.total_rows()))
     throw InputError(c.path(), "state.position",
                      fmt::format("{} particles, but the scene has {}", position.size() / 3,
-                                 state_.position.size() / 3));
-  state_.position = position;
-  state_.velocity = c.doubles("state.velocity");
+                                 families.total_rows()));
+  state_.position = families.localize_rows(position, 3);
+  state_.velocity = families.localize_rows(c.doubles("state.velocity"), 3);
   state_.time = c.number("run.time");
   summary_.steps = static_cast<long>(c.number("run.steps"));
   try {
     NamedArrays post_step = c.arrays("post_step.");
-    for (auto& array : c.arrays("model.")) post_step.push_back(std::move(array));
+    for (auto& array : local_rows(c.arrays("model."))) post_step.push_back(std::move(array));
     post_step_->restore_state(scene_, post_step, c.bytes("state.broken"));
     // The mesh was split afresh from the broken bonds; its vertices start from the particles.
     if (EmbeddedMesh* mesh = post_step_->embedded_mesh()) mesh->place(state_.position.data());
     dynamics_->restore_state(c.arrays("dynamics."));
-    integrator_->restore_state(c.arrays("integrator."));
+    integrator_->restore_state(local_rows(c.arrays("integrator.")));
     for (const auto* list : {&observers_.checks, &observers_.outputs})
       for (const auto& observer : *list)
         observer->resume(*parts_, c.arrays(observer->name() + "."));

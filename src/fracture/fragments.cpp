@@ -79,9 +79,11 @@ long count_fragments(MPI_Comm comm, const Families& families,
   join_rows(
       families, families.first_own_row(), families.end_own_row(),
       [&broken](int b) { return broken.empty() || broken[b] == 0; }, sets);
-  std::vector<int> pairs;  // (particle, its representative) where they differ
+  // (particle, its representative) where they differ, by their ids in the whole scene
+  std::vector<int> pairs;
   for (int k = 0; k < n; ++k)
-    if (const int root = sets.find(k); root != k) pairs.insert(pairs.end(), {k, root});
+    if (const int root = sets.find(k); root != k)
+      pairs.insert(pairs.end(), {families.global_row(k), families.global_row(root)});
   const int count = static_cast<int>(pairs.size());
   std::vector<int> counts(rank == 0 ? size : 0), displacements(counts.size());
   check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm), "MPI_Gather");
@@ -95,8 +97,8 @@ long count_fragments(MPI_Comm comm, const Families& families,
                     MPI_INT, 0, comm),
         "MPI_Gatherv");
   if (rank != 0) return 0;
-  DisjointSets whole(n);
-  long fragments = n;
+  DisjointSets whole(families.total_rows());
+  long fragments = families.total_rows();
   for (std::size_t k = 0; k + 1 < all.size(); k += 2)
     if (whole.unite(all[k], all[k + 1])) --fragments;
   return fragments;

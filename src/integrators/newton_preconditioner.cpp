@@ -194,20 +194,38 @@ void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int blo
               "MatSetOption");
 }
 
-// This rank's rows of `a` (3N×3N, block size 3) in a MATMPIAIJ whose rows are distributed as
-// the unknowns, its columns in the global numbering.
+// This rank's rows of `a` (3N×3N over the rows of the families, block size 3) in a MATMPIAIJ
+// whose rows are distributed as the unknowns, its columns in the whole scene's numbering.
 void NewtonPreconditioner::create_distributed_matrix(const SparseSymmetric& a) {
+  const Families& families = system_.dynamics().model().families();
   const int first = static_cast<int>(system_.first_unknown());
   const int rows = static_cast<int>(system_.end_unknown()) - first;
-  std::vector<PetscInt> offsets(rows + 1);
-  for (int r = 0; r <= rows; ++r) offsets[r] = a.offsets[first + r] - a.offsets[first];
-  const PetscInt* columns = a.columns.data() + a.offsets[first];
-  const PetscScalar* values = a.values.data() + a.offsets[first];
+  global_offsets_.assign(rows + 1, 0);
+  global_columns_.clear();
+  global_entry_.clear();
+  std::vector<std::pair<PetscInt, int>> row;
+  for (int r = 0; r < rows; ++r) {
+    row.clear();
+    for (int k = a.offsets[first + r]; k < a.offsets[first + r + 1]; ++k) {
+      const int c = a.columns[k];
+      row.emplace_back(3 * PetscInt(families.global_row(c / 3)) + c % 3, k);
+    }
+    std::sort(row.begin(), row.end());
+    for (const auto& [column, k] : row) {
+      global_columns_.push_back(column);
+      global_entry_.push_back(k);
+    }
+    global_offsets_[r + 1] = static_cast<PetscInt>(global_columns_.size());
+  }
+  global_values_.resize(global_entry_.size());
+  for (std::size_t e = 0; e < global_entry_.size(); ++e) global_values_[e] = a.values[global_entry_[e]];
   petsc_check(MatCreate(system_.dynamics().halo()->comm(), &petsc_matrix_), "MatCreate");
-  petsc_check(MatSetSizes(petsc_matrix_, rows, rows, a.rows, a.rows), "MatSetSizes");
+  petsc_check(MatSetSizes(petsc_matrix_, rows, rows, PETSC_DETERMINE, PETSC_DETERMINE),
+              "MatSetSizes");
   petsc_check(MatSetType(petsc_matrix_, MATMPIAIJ), "MatSetType");
   petsc_check(MatSetBlockSize(petsc_matrix_, 3), "MatSetBlockSize");
-  petsc_check(MatMPIAIJSetPreallocationCSR(petsc_matrix_, offsets.data(), columns, values),
+  petsc_check(MatMPIAIJSetPreallocationCSR(petsc_matrix_, global_offsets_.data(),
+                                           global_columns_.data(), global_values_.data()),
               "MatMPIAIJSetPreallocationCSR");
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
@@ -228,10 +246,13 @@ void NewtonPreconditioner::copy_values() {
     petsc_check(MatSeqAIJRestoreArray(petsc_matrix_, &values), "MatSeqAIJRestoreArray");
     return;
   }
-  for (PetscInt r = system_.first_unknown(); r < PetscInt(system_.end_unknown()); ++r) {
-    const int begin = matrix_.offsets[r];
-    petsc_check(MatSetValues(petsc_matrix_, 1, &r, matrix_.offsets[r + 1] - begin,
-                             matrix_.columns.data() + begin, matrix_.values.data() + begin,
+  for (std::size_t e = 0; e < global_entry_.size(); ++e)
+    global_values_[e] = matrix_.values[global_entry_[e]];
+  const PetscInt first = 3 * PetscInt(system_.dynamics().halo()->first_global());
+  for (PetscInt r = 0; r + 1 < PetscInt(global_offsets_.size()); ++r) {
+    const PetscInt row = first + r, begin = global_offsets_[r];
+    petsc_check(MatSetValues(petsc_matrix_, 1, &row, global_offsets_[r + 1] - begin,
+                             global_columns_.data() + begin, global_values_.data() + begin,
                              INSERT_VALUES),
                 "MatSetValues");
   }

@@ -71,6 +71,12 @@ class NewtonPreconditioner {
   SparseSymmetric scalar_stiffness_;  // scalar: L
   bool scalar_assembled_ = false;
   Mat petsc_matrix_ = nullptr;
+  // Over several ranks, matrix_'s own rows as the MATMPIAIJ holds them: their offsets, their
+  // columns in the whole scene's numbering (sorted in each row), the entry of matrix_ each
+  // one is, and their values.
+  std::vector<PetscInt> global_offsets_, global_columns_;
+  std::vector<int> global_entry_;
+  std::vector<PetscScalar> global_values_;
   PC pc_ = nullptr;
   std::unique_ptr<SupernodalCholesky> cholesky_;
   std::vector<double> component_in_, component_out_;  // scalar: one component, N

@@ -6,26 +6,28 @@
 
 namespace fissure {
 
-std::vector<std::vector<int>> probe_members(const Config& config, const Particles& particles) {
+std::vector<std::vector<int>> probe_members(const Config& config, const Particles& particles,
+                                            int first, int end) {
   std::vector<std::vector<int>> all;
-  for (std::size_t p = 0; p < config.probes.size(); ++p) {
+  for (const Probe& probe : config.probes) {
     std::vector<int> members;
-    for (int i = 0; i < particles.count(); ++i)
-      if (config.probes[p].region.contains(&particles.reference[3 * i])) members.push_back(i);
-    if (members.empty())
-      throw InputError(config.file, fmt::format("probes[{}].region", p),
-                       fmt::format("probe '{}' contains no particle", config.probes[p].name));
+    for (int i = first; i < end; ++i)
+      if (probe.region.contains(&particles.reference[3 * i])) members.push_back(i);
     all.push_back(std::move(members));
   }
   return all;
 }
 
-ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
-                     std::vector<std::vector<int>> members,
+void check_probe_members(const Config& config, const std::vector<double>& members) {
+  for (std::size_t p = 0; p < config.probes.size(); ++p)
+    if (members.at(p) == 0)
+      throw InputError(config.file, fmt::format("probes[{}].region", p),
+                       fmt::format("probe '{}' contains no particle", config.probes[p].name));
+}
+
+ProbesCsv::ProbesCsv(const std::string& path, const Config& config,
                      const std::vector<std::string>& extra_columns, bool append)
-    : particles_(particles),
-      file_(path, append ? OutputFile::Mode::append : OutputFile::Mode::truncate),
-      members_(std::move(members)) {
+    : file_(path, append ? OutputFile::Mode::append : OutputFile::Mode::truncate) {
   if (append) return;
   std::ostream& out = file_.stream();
   out << "time,kinetic_energy,elastic_energy";
@@ -38,17 +40,18 @@ ProbesCsv::ProbesCsv(const std::string& path, const Config& config, const Partic
 }
 
 void ProbesCsv::write_row(double time, double kinetic_energy, double elastic_energy,
-                          const std::vector<double>& position, const std::vector<double>& extra) {
+                          const std::vector<std::vector<double>>& members,
+                          const std::vector<double>& extra) {
   std::ostream& out = file_.stream();
   out << fmt::format("{:.9g},{:.9g},{:.9g}", time, kinetic_energy, elastic_energy);
-  for (const auto& members : members_) {
+  for (const std::vector<double>& values : members) {
     double pos[3] = {0, 0, 0}, disp[3] = {0, 0, 0};
-    for (int i : members)
+    for (std::size_t m = 0; m + 6 <= values.size(); m += 6)
       for (int k = 0; k < 3; ++k) {
-        pos[k] += position[3 * i + k];
-        disp[k] += position[3 * i + k] - particles_.reference[3 * i + k];
+        pos[k] += values[m + k];
+        disp[k] += values[m + 3 + k];
       }
-    const double inv = 1.0 / static_cast<double>(members.size());
+    const double inv = 1.0 / static_cast<double>(values.size() / 6);
     for (double v : pos) out << fmt::format(",{:.9g}", v * inv);
     for (double v : disp) out << fmt::format(",{:.9g}", v * inv);
   }

@@ -12,25 +12,27 @@
 
 namespace fissure {
 
-// The particles of each probe (config.probes), whose reference position lies in its region;
-// throws InputError if a probe region holds no particle. Touches no file.
-std::vector<std::vector<int>> probe_members(const Config& config, const Particles& particles);
+// The particles [first, end) of each probe (config.probes), whose reference position lies in
+// its region. Touches no file.
+std::vector<std::vector<int>> probe_members(const Config& config, const Particles& particles,
+                                            int first, int end);
+// Throws InputError for the first probe with no member: `members` counts each probe's members
+// in the whole scene.
+void check_probe_members(const Config& config, const std::vector<double>& members);
 
 class ProbesCsv {
  public:
-  // `members` from probe_members(). With `append` the rows go after those already in the file (a
-  // resumed run) and no header is written. Each row reaches the file as it is written;
-  // OutputError when the file refuses it.
-  ProbesCsv(const std::string& path, const Config& config, const Particles& particles,
-            std::vector<std::vector<int>> members, const std::vector<std::string>& extra_columns,
-            bool append = false);
+  // With `append` the rows go after those already in the file (a resumed run) and no header is
+  // written. Each row reaches the file as it is written; OutputError when the file refuses it.
+  ProbesCsv(const std::string& path, const Config& config,
+            const std::vector<std::string>& extra_columns, bool append = false);
+  // `members`: per probe, each member's position and displacement (6 values, in the order of
+  // the members' particles), of which the row holds the means.
   void write_row(double time, double kinetic_energy, double elastic_energy,
-                 const std::vector<double>& position, const std::vector<double>& extra);
+                 const std::vector<std::vector<double>>& members, const std::vector<double>& extra);
 
  private:
-  const Particles& particles_;
   OutputFile file_;
-  std::vector<std::vector<int>> members_;
 };
 
 }  // namespace fissure

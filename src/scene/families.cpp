@@ -169,6 +169,28 @@ Families assemble(const Particles& particles, std::vector<RowMembers> parts) {
   return f;
 }
 
+// The particles order[0], order[1], … of p, in that order.
+Particles select(const Particles& p, const std::vector<int>& order) {
+  const std::size_t n = order.size();
+  Particles selected;
+  selected.reference.resize(3 * n);
+  selected.velocity.resize(3 * n);
+  selected.volume.resize(n);
+  selected.mass.resize(n);
+  selected.body.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = order[k];
+    for (int d = 0; d < 3; ++d) {
+      selected.reference[3 * k + d] = p.reference[3 * i + d];
+      selected.velocity[3 * k + d] = p.velocity[3 * i + d];
+    }
+    selected.volume[k] = p.volume[i];
+    selected.mass[k] = p.mass[i];
+    selected.body[k] = p.body[i];
+  }
+  return selected;
+}
+
 }  // namespace
 
 Families build_families(const Particles& particles, const std::vector<double>& horizon_of_body) {
@@ -238,6 +260,43 @@ Families split_families(const Particles& particles, const std::vector<double>& h
   return f;
 }
 
+// The kept rows are the non-empty ones: dropping the empty rows leaves every bond where it was,
+// and numbers the members in the order of their ids, so each row keeps its order (and a row's
+// forces their order of summation).
+Families number_locally(const Families& split, Particles& particles) {
+  if (split.whole() || !split.global_id.empty())
+    throw std::logic_error("number_locally: the families are not split_families'");
+  const int n = split.rows();
+  Families f;
+  std::vector<int> local_of(n, -1);
+  for (int r = 0; r < n; ++r)
+    if (split.offsets[r + 1] > split.offsets[r] ||
+        (r >= split.first_own_row() && r < split.end_own_row())) {
+      local_of[r] = static_cast<int>(f.global_id.size());
+      f.global_id.push_back(r);
+    }
+  const int rows = static_cast<int>(f.global_id.size());
+  f.offsets.resize(rows + 1);
+  f.global_offsets.resize(rows + 1);
+  for (int i = 0; i < rows; ++i) {
+    f.offsets[i] = split.offsets[f.global_id[i]];
+    f.global_offsets[i] = split.global_offsets[f.global_id[i]];
+  }
+  f.offsets[rows] = split.offsets[n];
+  f.global_offsets[rows] = split.global_offsets[n];
+  f.neighbors.resize(split.neighbors.size());
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < f.neighbors.size(); ++b) f.neighbors[b] = local_of[split.neighbors[b]];
+  f.reference_length = split.reference_length;
+  f.reverse = split.reverse;
+  f.trimmed_position = split.trimmed_position;
+  f.own_begin = local_of[split.first_own_row()];
+  f.own_end = f.own_begin + split.end_own_row() - split.first_own_row();
+  f.whole_rows = n;
+  particles = select(particles, f.global_id);
+  return f;
+}
+
 std::vector<int> sort_spatially(Particles& p, double cell) {
   const int n = p.count();
   if (n == 0) return {};
@@ -254,22 +313,7 @@ std::vector<int> sort_spatially(Particles& p, double cell) {
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return code[a] < code[b]; });
-  Particles sorted;
-  sorted.reference.resize(3 * n);
-  sorted.velocity.resize(3 * n);
-  sorted.volume.resize(n);
-  sorted.mass.resize(n);
-  sorted.body.resize(n);
-  for (int k = 0; k < n; ++k) {
-    const int i = order[k];
-    for (int d = 0; d < 3; ++d) {
-      sorted.reference[3 * k + d] = p.reference[3 * i + d];
-      sorted.velocity[3 * k + d] = p.velocity[3 * i + d];
-    }
-    sorted.volume[k] = p.volume[i];
-    sorted.mass[k] = p.mass[i];
-    sorted.body[k] = p.body[i];
-  }
+  Particles sorted = select(p, order);
   p = std::move(sorted);
   return order;
 }

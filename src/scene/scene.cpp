@@ -141,9 +141,11 @@ void build_scene_families(Scene& scene, const RowSplit& split) {
   sizes = {};
   scene.boundaries = split.boundaries(offsets);
   scene.part = split.part;
-  scene.families =
+  // this rank's rows and ghosts, numbered on their own: the other particles are dropped
+  scene.families = number_locally(
       split_families(scene.particles, scene.horizon_of_body, offsets,
-                     scene.boundaries.at(split.part), scene.boundaries.at(split.part + 1));
+                     scene.boundaries.at(split.part), scene.boundaries.at(split.part + 1)),
+      scene.particles);
 }
 
 }  // namespace
@@ -180,6 +182,11 @@ Scene build_scene(const Config& config, const RowSplit& split) {
       for (int& i : tets.particle)
         if (i >= 0) i = sorted_index[i];
   }
+  // the tet meshes name particles of the whole scene, which a split drops (Families)
+  if (split.boundaries && !scene.tet_meshes.empty())
+    throw InputError(config.file, "output",
+                     "output.surface and output.tets cannot be written over several ranks yet "
+                     "(docs/mpi.md)");
   try {
     build_scene_families(scene, split);
   } catch (const std::length_error& e) {

@@ -24,8 +24,8 @@ struct Scene {
   std::vector<double> horizon_of_body;  // δ in metres, per body
   std::vector<BodyTetMesh> tet_meshes;  // per tet body, only if config.output.embedded_mesh()
   // Over several ranks (RowSplit): the first row of each rank's range and the row count, and
-  // this rank; families then holds only this rank's rows and its ghosts' (Families). Empty on
-  // one rank.
+  // this rank; families and particles then hold only this rank's rows and its ghosts, numbered
+  // on their own (Families::global_id). Empty on one rank.
   std::vector<int> boundaries;
   int part = 0;
 };

@@ -1,11 +1,13 @@
 // Families split over ranks (issue 18: memory per rank that scales): each rank keeps its own
-// rows of the whole families and, of its ghosts' rows, their bonds to its own rows, numbered in
-// a CSR of its own, with the whole families' bond numbering at hand for checkpoints and the bond
-// star forest; a model on them gets the forces, stable step and nearest members one rank gets;
-// and the fragments of a run are counted from every rank's rows.
+// rows of the whole families and, of its ghosts' rows, their bonds to its own rows, and only
+// those particles, numbered on their own (own rows first, then the ghosts) with their ids in the
+// whole scene and the whole families' bond numbering at hand for checkpoints and the bond star
+// forest; a model on them gets the forces, stable step and nearest members one rank gets; and
+// the fragments of a run are counted from every rank's rows.
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cstring>
 #include <set>
 #include <string>
@@ -39,52 +41,76 @@ TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
   const std::vector<int> boundaries = split_rows_by_bonds(w.offsets, test::ranks());
   ASSERT_EQ(split.boundaries, boundaries);
   ASSERT_FALSE(f.whole());
-  EXPECT_EQ(f.global_offsets, w.offsets);
   EXPECT_EQ(f.total_directed_bonds(), w.directed_bonds());
+  EXPECT_EQ(f.total_rows(), whole.particles.count());
   const int begin = boundaries[test::rank()], end = boundaries[test::rank() + 1];
-  EXPECT_EQ(f.first_own_row(), begin);
-  EXPECT_EQ(f.end_own_row(), end);
+  // the rows: the own particles and the ghosts (the whole families' halo), by id
   const Halo halo(PETSC_COMM_WORLD, w, boundaries);
-  const std::set<int> ghosts(halo.ghosts().begin(), halo.ghosts().end());
+  std::vector<int> expected_ids(halo.ghosts().begin(), halo.ghosts().end());
+  for (int i = begin; i < end; ++i) expected_ids.push_back(i);
+  std::sort(expected_ids.begin(), expected_ids.end());
+  ASSERT_EQ(f.global_id, expected_ids);
+  const int first = f.first_own_row(), own = end - begin;
+  EXPECT_EQ(f.global_row(first), begin);
+  EXPECT_EQ(f.end_own_row(), first + own);
+  ASSERT_EQ(split.particles.count(), f.rows());
   // counted, not asserted: every rank must reach the collective calls below
-  long wrong_rows = 0, wrong_bonds = 0, wrong_reverses = 0;
-  for (int i = 0; i < whole.particles.count(); ++i) {
-    // an own row whole, a ghost's row its members among the own rows, any other row empty
-    const bool own = i >= begin && i<end, ghost = ghosts.count(i)> 0;
+  long wrong_particles = 0, wrong_rows = 0, wrong_bonds = 0, wrong_reverses = 0, unsorted = 0;
+  for (int i = 0; i < f.rows(); ++i) {
+    const int g = f.global_row(i);
+    for (int k = 0; k < 3; ++k)
+      wrong_particles += split.particles.reference[3 * i + k] != whole.particles.reference[3 * g + k] ||
+                         split.particles.velocity[3 * i + k] != whole.particles.velocity[3 * g + k];
+    wrong_particles += split.particles.volume[i] != whole.particles.volume[g] ||
+                       split.particles.mass[i] != whole.particles.mass[g] ||
+                       split.particles.body[i] != whole.particles.body[g];
+    // an own row whole, a ghost's row its members among the own rows
+    const bool own_row = i >= first && i < first + own;
     int expected = 0;
-    for (int b = w.offsets[i]; b < w.offsets[i + 1]; ++b)
-      expected += own || (ghost && w.neighbors[b] >= begin && w.neighbors[b] < end);
-    if (f.offsets[i + 1] - f.offsets[i] != expected) {
+    for (int b = w.offsets[g]; b < w.offsets[g + 1]; ++b)
+      expected += own_row || (w.neighbors[b] >= begin && w.neighbors[b] < end);
+    if (f.offsets[i + 1] - f.offsets[i] != expected || f.global_offsets[i] != w.offsets[g]) {
       ++wrong_rows;
       continue;
     }
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
-      const long g = f.global_bond(i, b);
-      wrong_bonds +=
-          f.neighbors[b] != w.neighbors[g] || f.reference_length[b] != w.reference_length[g];
+      const long gb = f.global_bond(i, b);
+      unsorted += b > f.offsets[i] && f.neighbors[b] <= f.neighbors[b - 1];
+      wrong_bonds += f.global_row(f.neighbors[b]) != w.neighbors[gb] ||
+                     f.reference_length[b] != w.reference_length[gb];
       // every reverse is kept here, and is the whole families' reverse
       wrong_reverses +=
-          f.reverse[b] < 0 || f.global_bond(f.neighbors[b], f.reverse[b]) != w.reverse[g];
+          f.reverse[b] < 0 || f.global_bond(f.neighbors[b], f.reverse[b]) != w.reverse[gb];
     }
   }
+  EXPECT_EQ(wrong_particles, 0);
   EXPECT_EQ(wrong_rows, 0);
   EXPECT_EQ(wrong_bonds, 0);
   EXPECT_EQ(wrong_reverses, 0);
-  // a checkpoint's per-bond array lands on the same bonds
+  EXPECT_EQ(unsorted, 0);
+  // a checkpoint's per-bond and per-particle arrays land on the same bonds and particles
   std::vector<double> numbered(w.directed_bonds());
   for (std::size_t g = 0; g < numbered.size(); ++g) numbered[g] = double(g);
   const std::vector<double> local = f.localize(numbered);
   ASSERT_EQ(local.size(), f.directed_bonds());
   long misplaced = 0;
-  for (int i = 0; i < whole.particles.count(); ++i)
+  for (int i = 0; i < f.rows(); ++i)
     for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b)
       misplaced += local[b] != double(f.global_bond(i, b));
+  std::vector<double> ids(2 * std::size_t(whole.particles.count()));
+  for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = double(k);
+  const std::vector<double> local_ids = f.localize_rows(ids, 2);
+  ASSERT_EQ(local_ids.size(), 2 * std::size_t(f.rows()));
+  for (int i = 0; i < f.rows(); ++i)
+    for (int k = 0; k < 2; ++k) misplaced += local_ids[2 * i + k] != double(2 * f.global_row(i) + k);
   EXPECT_EQ(misplaced, 0);
   // what the split is for: the ranks' own rows hold every bond once, and a rank keeps fewer
-  EXPECT_EQ(test::sum_over_ranks(long(f.offsets[end] - f.offsets[begin])),
+  // bonds and particles
+  EXPECT_EQ(test::sum_over_ranks(long(f.offsets[first + own] - f.offsets[first])),
             long(w.directed_bonds()));
   if (test::ranks() > 1) {
     EXPECT_LT(f.directed_bonds(), w.directed_bonds());
+    EXPECT_LT(f.rows(), whole.particles.count());
   }
 }
 
@@ -105,17 +131,19 @@ TEST(SplitFamilies, ModelOnThemEqualsOneRankBitwise) {
     auto part = make_model(split);
     if (c.cracked) {
       test::break_crack_bonds(whole, *reference, 0, n);
-      test::break_crack_bonds(split, *part, 0, n);
+      test::break_crack_bonds(split, *part, 0, split.particles.count());
     }
     std::vector<double> expected(3 * std::size_t(n));
     reference->forces(y.data(), expected.data());
     const Halo halo(PETSC_COMM_WORLD, split.families, split.boundaries);
     part->distribute(halo);
-    std::vector<double> force(y.size(), 0.0);
-    part->forces(test::known_positions(y, halo).data(), force.data());
+    const std::vector<double> local_y = split.families.localize_rows(y, 3);
+    std::vector<double> force(local_y.size(), 0.0);
+    part->forces(test::known_positions(local_y, halo).data(), force.data());
     int differing = 0;  // counted, not asserted: every rank must reach the collective calls
     for (int i = halo.begin(); i < halo.end(); ++i)
-      differing += std::memcmp(&force[3 * i], &expected[3 * i], 3 * sizeof(double)) != 0;
+      differing += std::memcmp(&force[3 * i], &expected[3 * std::size_t(split.families.global_row(i))],
+                               3 * sizeof(double)) != 0;
     EXPECT_EQ(differing, 0);
     EXPECT_EQ(part->stable_time_step(), reference->stable_time_step());
     const std::vector<char> kept = nearest_bonds(whole.families, kNearestMembers);
