@@ -69,7 +69,7 @@ int run(int argc, char** argv) {
   fracture.distribute(halo);
   const double setup = seconds_since(setup_start);
 
-  const int n = scene.particles.count(), begin = halo.begin(), end = halo.end();
+  const int n = scene.families.total_rows(), begin = halo.begin(), end = halo.end();
   fissure::State state{scene.particles.reference, scene.particles.velocity, 0.0};
   for (std::size_t k = 0; k < state.position.size(); ++k)
     state.position[k] *= 1.0 + 1e-4 * std::sin(0.37 * k);
@@ -98,13 +98,15 @@ int run(int argc, char** argv) {
                             largest_over_ranks(peak_rss_mb()),
                             largest_over_ranks(setup),
                             largest_over_ranks(bonds),
-                            largest_over_ranks(double(scene.families.directed_bonds()))};
+                            largest_over_ranks(double(scene.families.directed_bonds())),
+                            largest_over_ranks(double(scene.particles.count()))};
   if (rank == 0) {
     fmt::print("ranks {}\n", ranks);
     fmt::print("particles {}\n", n);
     fmt::print("particles_per_rank {:.0f}\n", double(n) / ranks);
     fmt::print("largest_bonds_per_rank {:.0f}\n", results[5]);
     fmt::print("largest_kept_bonds_per_rank {:.0f}\n", results[6]);  // own and ghost rows
+    fmt::print("largest_kept_particles_per_rank {:.0f}\n", results[7]);  // own and ghosts
     fmt::print("setup_seconds {:.2f}\n", results[4]);
     fmt::print("seconds_per_step {:.5f}\n", results[0]);
     fmt::print("ghost_fraction {:.3f}\n", results[1]);

@@ -194,38 +194,29 @@ void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int blo
               "MatSetOption");
 }
 
-// This rank's rows of `a` (3N×3N over the rows of the families, block size 3) in a MATMPIAIJ
-// whose rows are distributed as the unknowns, its columns in the whole scene's numbering.
-void NewtonPreconditioner::create_distributed_matrix(const SparseSymmetric& a) {
+PetscInt NewtonPreconditioner::global_column(int c) const {
   const Families& families = system_.dynamics().model().families();
+  return 3 * PetscInt(families.global_row(c / 3)) + c % 3;
+}
+
+// This rank's rows of `a` (3N×3N over the rows of the families, block size 3) in a MATMPIAIJ
+// whose rows are distributed as the unknowns, its columns in the whole scene's numbering. The
+// families number their rows in the order of the particles' ids, so each row's columns stay
+// sorted.
+void NewtonPreconditioner::create_distributed_matrix(const SparseSymmetric& a) {
   const int first = static_cast<int>(system_.first_unknown());
   const int rows = static_cast<int>(system_.end_unknown()) - first;
-  global_offsets_.assign(rows + 1, 0);
-  global_columns_.clear();
-  global_entry_.clear();
-  std::vector<std::pair<PetscInt, int>> row;
-  for (int r = 0; r < rows; ++r) {
-    row.clear();
-    for (int k = a.offsets[first + r]; k < a.offsets[first + r + 1]; ++k) {
-      const int c = a.columns[k];
-      row.emplace_back(3 * PetscInt(families.global_row(c / 3)) + c % 3, k);
-    }
-    std::sort(row.begin(), row.end());
-    for (const auto& [column, k] : row) {
-      global_columns_.push_back(column);
-      global_entry_.push_back(k);
-    }
-    global_offsets_[r + 1] = static_cast<PetscInt>(global_columns_.size());
-  }
-  global_values_.resize(global_entry_.size());
-  for (std::size_t e = 0; e < global_entry_.size(); ++e) global_values_[e] = a.values[global_entry_[e]];
+  std::vector<PetscInt> offsets(rows + 1), columns(a.offsets[first + rows] - a.offsets[first]);
+  for (int r = 0; r <= rows; ++r) offsets[r] = a.offsets[first + r] - a.offsets[first];
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    columns[k] = global_column(a.columns[a.offsets[first] + k]);
   petsc_check(MatCreate(system_.dynamics().halo()->comm(), &petsc_matrix_), "MatCreate");
   petsc_check(MatSetSizes(petsc_matrix_, rows, rows, PETSC_DETERMINE, PETSC_DETERMINE),
               "MatSetSizes");
   petsc_check(MatSetType(petsc_matrix_, MATMPIAIJ), "MatSetType");
   petsc_check(MatSetBlockSize(petsc_matrix_, 3), "MatSetBlockSize");
-  petsc_check(MatMPIAIJSetPreallocationCSR(petsc_matrix_, global_offsets_.data(),
-                                           global_columns_.data(), global_values_.data()),
+  petsc_check(MatMPIAIJSetPreallocationCSR(petsc_matrix_, offsets.data(), columns.data(),
+                                           a.values.data() + a.offsets[first]),
               "MatMPIAIJSetPreallocationCSR");
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
@@ -246,14 +237,16 @@ void NewtonPreconditioner::copy_values() {
     petsc_check(MatSeqAIJRestoreArray(petsc_matrix_, &values), "MatSeqAIJRestoreArray");
     return;
   }
-  for (std::size_t e = 0; e < global_entry_.size(); ++e)
-    global_values_[e] = matrix_.values[global_entry_[e]];
-  const PetscInt first = 3 * PetscInt(system_.dynamics().halo()->first_global());
-  for (PetscInt r = 0; r + 1 < PetscInt(global_offsets_.size()); ++r) {
-    const PetscInt row = first + r, begin = global_offsets_[r];
-    petsc_check(MatSetValues(petsc_matrix_, 1, &row, global_offsets_[r + 1] - begin,
-                             global_columns_.data() + begin, global_values_.data() + begin,
-                             INSERT_VALUES),
+  const int first = static_cast<int>(system_.first_unknown());
+  const PetscInt first_global = 3 * PetscInt(system_.dynamics().halo()->first_global());
+  std::vector<PetscInt> columns;
+  for (int r = first; r < static_cast<int>(system_.end_unknown()); ++r) {
+    const int begin = matrix_.offsets[r], end = matrix_.offsets[r + 1];
+    columns.resize(end - begin);
+    for (int k = begin; k < end; ++k) columns[k - begin] = global_column(matrix_.columns[k]);
+    const PetscInt row = first_global + (r - first);
+    petsc_check(MatSetValues(petsc_matrix_, 1, &row, end - begin, columns.data(),
+                             matrix_.values.data() + begin, INSERT_VALUES),
                 "MatSetValues");
   }
   petsc_check(MatAssemblyBegin(petsc_matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

@@ -59,6 +59,8 @@ class NewtonPreconditioner {
   void create_petsc_matrix(const SparseSymmetric& a, int block_size);
   void create_distributed_matrix(const SparseSymmetric& a);
   void copy_values();
+  // Column c of matrix_ in the whole scene's numbering (over several ranks), in the same order.
+  PetscInt global_column(int c) const;
   void shift_and_hold(double inertia);
   RunError not_positive_definite() const;
 
@@ -71,12 +73,6 @@ class NewtonPreconditioner {
   SparseSymmetric scalar_stiffness_;  // scalar: L
   bool scalar_assembled_ = false;
   Mat petsc_matrix_ = nullptr;
-  // Over several ranks, matrix_'s own rows as the MATMPIAIJ holds them: their offsets, their
-  // columns in the whole scene's numbering (sorted in each row), the entry of matrix_ each
-  // one is, and their values.
-  std::vector<PetscInt> global_offsets_, global_columns_;
-  std::vector<int> global_entry_;
-  std::vector<PetscScalar> global_values_;
   PC pc_ = nullptr;
   std::unique_ptr<SupernodalCholesky> cholesky_;
   std::vector<double> component_in_, component_out_;  // scalar: one component, N
