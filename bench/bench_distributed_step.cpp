@@ -59,6 +59,8 @@ int run(int argc, char** argv) {
   // each rank keeps its own rows' families and its ghosts' bonds to them, as `fissure run` does
   const fissure::Scene scene = fissure::build_scene(
       fissure::parse_config(yaml, "bench.yaml"), fissure::RunRanks::split_over(PETSC_COMM_WORLD));
+  // the peak so far: the whole scene sampled and searched, then its own part kept
+  const double scene_peak = peak_rss_mb();
   auto model = fissure::make_model(scene);
   fissure::Dynamics dynamics(scene, *model);
   fissure::BondBreaking fracture(scene, *model);
@@ -99,7 +101,8 @@ int run(int argc, char** argv) {
                             largest_over_ranks(setup),
                             largest_over_ranks(bonds),
                             largest_over_ranks(double(scene.families.directed_bonds())),
-                            largest_over_ranks(double(scene.particles.count()))};
+                            largest_over_ranks(double(scene.particles.count())),
+                            largest_over_ranks(scene_peak)};
   if (rank == 0) {
     fmt::print("ranks {}\n", ranks);
     fmt::print("particles {}\n", n);
@@ -112,6 +115,7 @@ int run(int argc, char** argv) {
     fmt::print("ghost_fraction {:.3f}\n", results[1]);
     fmt::print("halo_bytes_per_step {:.0f}\n", results[2]);
     fmt::print("peak_rss_mb_per_rank {:.0f}\n", results[3]);
+    fmt::print("scene_peak_rss_mb_per_rank {:.0f}\n", results[8]);
     fmt::print("broken_bonds {}\n", broken);
   }
   return 0;

@@ -106,7 +106,7 @@ void ProbesOutput::write_row(const RunParts& run) {
       for (int k = 0; k < 3; ++k) members[p].push_back(y[3 * i + k] - x[3 * i + k]);
     }
     if (comm_ != MPI_COMM_NULL)
-      members[p] = gather_owned_from(comm_, member_boundaries_[p], members[p].data(), 6);
+      members[p] = gather_owned(comm_, member_boundaries_[p], members[p].data(), 6);
   }
   ranks.write([&] {
     if (ranks.root())

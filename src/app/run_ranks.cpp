@@ -126,19 +126,19 @@ int RunRanks::min(int value) const { return distributed() ? min_over_ranks(comm_
 
 std::vector<double> RunRanks::gather(const std::vector<double>& values, int width) const {
   if (!distributed()) return values;
-  return gather_owned_from(comm_, halo_->boundaries(), values.data() + std::ptrdiff_t(width) * begin_,
+  return gather_owned(comm_, halo_->boundaries(), values.data() + std::ptrdiff_t(width) * begin_,
                            width);
 }
 
 std::vector<std::uint8_t> RunRanks::gather_bonds(const std::vector<std::uint8_t>& values) const {
   // empty on every rank without fracture
   if (!distributed() || values.empty()) return values;
-  return gather_owned_from(comm_, halo_->bond_boundaries(), values.data() + first_bond_, 1);
+  return gather_owned(comm_, halo_->bond_boundaries(), values.data() + first_bond_, 1);
 }
 
 std::vector<double> RunRanks::gather_bonds(const std::vector<double>& values) const {
   if (!distributed() || values.empty()) return values;
-  return gather_owned_from(comm_, halo_->bond_boundaries(), values.data() + first_bond_, 1);
+  return gather_owned(comm_, halo_->bond_boundaries(), values.data() + first_bond_, 1);
 }
 
 void RunRanks::agree(const std::function<void()>& work) const {

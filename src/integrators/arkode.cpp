@@ -34,7 +34,7 @@ struct Arkode::Solver {
   void* memory = nullptr;
   N_Vector u = nullptr;  // [y − origin; v] of rows [first, first + count/3)
   // Over several ranks: u is an MPI+X vector over the ranks' `local` parts, each [y − origin; v]
-  // of its own rows; velocity and acceleration are 3N, in the global numbering.
+  // of its own rows; velocity and acceleration are 3N over the rank's rows (own and ghosts).
   N_Vector local = nullptr;
   std::size_t first = 0, count = 0;  // in coordinates: 3 × the first row, 3 × the rows
   bool distributed = false;
@@ -76,7 +76,7 @@ int rhs(realtype t, N_Vector u, N_Vector u_dot, void* user_data) {
       (s->dynamics.*part)(t, s->position.data(), v, out + n);
       return 0;
     }
-    // the dynamics reads and writes the global numbering, the ghosts' positions from the halo
+    // the dynamics reads and writes all the rank's rows, the ghosts' positions from the halo
     std::copy(v, v + n, s->velocity.begin() + first);
     s->dynamics.share(s->position.data());
     (s->dynamics.*part)(t, s->position.data(), s->velocity.data(), s->acceleration.data());

@@ -23,7 +23,7 @@
 // change); where CG breaks down (S with the exact K not SPD) the matrix-free K becomes K⁺.
 //
 // Over several MPI ranks (Dynamics::distribute; docs/mpi.md) ARKODE's vectors hold the rank's
-// own rows, [Δy; Δv] of them; the system's own arrays stay 3N in the global numbering with the
+// own rows, [Δy; Δv] of them; the system's own arrays stay 3N over the rank's rows with the
 // ghosts' positions shared, CG's dot products are summed over the ranks, and the factor is of
 // the rank's diagonal block of S (block Jacobi): `nearest` only, the two-hop tangent's rows
 // reaching beyond the halo.

@@ -26,7 +26,7 @@ struct SparseSymmetric {
 // 3j, 3j + 1, 3j + 2.
 SparseSymmetric bond_pattern(const Families& families);
 // The same with the rows of particles [first, end) only, the others empty (an MPI rank's rows:
-// the matrix keeps the global numbering, its memory only the rank's rows).
+// the matrix keeps the families' numbering, its memory only the rank's rows).
 SparseSymmetric bond_pattern(const Families& families, int first, int end);
 
 // 3×3 blocks coupling each particle with every particle within two family hops: the pattern of

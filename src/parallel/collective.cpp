@@ -67,33 +67,14 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, co
   return gathered;
 }
 
-// The first entry of this rank's range in an array of the global numbering.
-template <class T>
-const T* first_owned(MPI_Comm comm, const std::vector<int>& boundaries, const T* values,
-                     int width) {
-  if (boundaries.empty()) throw std::invalid_argument("gather_owned: no boundaries");
-  const int rank = rank_in_split(comm, boundaries, boundaries.back(), "gather_owned");
-  return values + static_cast<std::size_t>(boundaries[rank]) * width;
-}
-
 }  // namespace
 
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                 const double* values, int width) {
-  return gather_rows(comm, boundaries, first_owned(comm, boundaries, values, width), width);
-}
-
-std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                       const std::uint8_t* values, int width) {
-  return gather_rows(comm, boundaries, first_owned(comm, boundaries, values, width), width);
-}
-
-std::vector<double> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
                                       const double* own, int width) {
   return gather_rows(comm, boundaries, own, width);
 }
 
-std::vector<std::uint8_t> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
+std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
                                             const std::uint8_t* own, int width) {
   return gather_rows(comm, boundaries, own, width);
 }

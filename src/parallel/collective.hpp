@@ -28,20 +28,15 @@ void agree(MPI_Comm comm, Work&& work) {
   agree_on_error(comm, error);
 }
 
-// The entries [boundaries[r] * width, boundaries[r + 1] * width) of `values` that each rank r
-// owns, gathered on rank 0 in the global numbering (boundaries.back() * width values); empty on
-// the other ranks. Collective.
+// The entries [boundaries[r] * width, boundaries[r + 1] * width) of an array split over the
+// ranks, each rank r's from `own` (its first owned entry, wherever its own numbering keeps it:
+// Families), gathered on rank 0 in the global numbering (boundaries.back() * width values);
+// empty on the other ranks. Collective.
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                 const double* values, int width);
+                                 const double* own, int width);
 // The same for bytes (per-bond flags, with the rows' first bonds as the boundaries).
 std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                       const std::uint8_t* values, int width);
-// The same where this rank keeps its own entries elsewhere: `own` points at its first one (a
-// rank's bonds numbered in its own CSR, Families).
-std::vector<double> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
-                                      const double* own, int width);
-std::vector<std::uint8_t> gather_owned_from(MPI_Comm comm, const std::vector<int>& boundaries,
-                                            const std::uint8_t* own, int width);
+                                       const std::uint8_t* own, int width);
 
 // Each entry summed over the ranks in rank order, the same bits on every rank whatever the MPI
 // library's reduction order. Collective.

@@ -1,8 +1,9 @@
 #pragma once
 // Copies entries of an array split over ranks into the ranks that need them: the index space
 // [0, boundaries.back()) is owned in contiguous ranges (rank p owns [boundaries[p],
-// boundaries[p + 1])), and each rank names the entries it needs from others. Every rank keeps
-// the array in the global numbering; a fill writes only the needed entries. One PETSc
+// boundaries[p + 1])), and each rank names the entries it needs from others. A rank keeps the
+// array in the global numbering or in one of its own (`slots`); a fill writes only the needed
+// entries. One PETSc
 // star forest for all entry sizes, each size an MPI datatype of its own (issue 18: particles'
 // ghosts, bonds' reverses).
 #include <mpi.h>
