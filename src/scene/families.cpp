@@ -263,7 +263,7 @@ Families split_families(const Particles& particles, const std::vector<double>& h
 // The kept rows are the non-empty ones: dropping the empty rows leaves every bond where it was,
 // and numbers the members in the order of their ids, so each row keeps its order (and a row's
 // forces their order of summation).
-Families number_locally(const Families& split, Particles& particles) {
+Families number_locally(Families split, Particles& particles) {
   if (split.whole() || !split.global_id.empty())
     throw std::logic_error("number_locally: the families are not split_families'");
   const int n = split.rows();
@@ -284,12 +284,13 @@ Families number_locally(const Families& split, Particles& particles) {
   }
   f.offsets[rows] = split.offsets[n];
   f.global_offsets[rows] = split.global_offsets[n];
-  f.neighbors.resize(split.neighbors.size());
+  // the bonds stay where they are: only their members are renumbered
+  f.neighbors = std::move(split.neighbors);
 #pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < f.neighbors.size(); ++b) f.neighbors[b] = local_of[split.neighbors[b]];
-  f.reference_length = split.reference_length;
-  f.reverse = split.reverse;
-  f.trimmed_position = split.trimmed_position;
+  for (std::size_t b = 0; b < f.neighbors.size(); ++b) f.neighbors[b] = local_of[f.neighbors[b]];
+  f.reference_length = std::move(split.reference_length);
+  f.reverse = std::move(split.reverse);
+  f.trimmed_position = std::move(split.trimmed_position);
   f.own_begin = local_of[split.first_own_row()];
   f.own_end = f.own_begin + split.end_own_row() - split.first_own_row();
   f.whole_rows = n;

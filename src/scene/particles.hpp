@@ -105,7 +105,7 @@ Families split_families(const Particles& particles, const std::vector<double>& h
 
 // The rows split_families kept (its own rows and its ghosts'), numbered locally (Families) in
 // the order of their ids; `particles` keeps those rows' particles, in that order.
-Families number_locally(const Families& split, Particles& particles);
+Families number_locally(Families split, Particles& particles);
 
 // Reorders particles along a Morton curve of cell size `cell` so that families are near in
 // memory. Returns the permutation: new index k holds the particle that had index order[k].

@@ -24,6 +24,8 @@
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/vtu_reader.hpp"
+#include "parallel/ownership.hpp"
+#include "scene/scene.hpp"
 #include "ranks.hpp"
 
 namespace fissure {
@@ -461,6 +463,66 @@ TEST(DistributedRunLoop, WhatCannotRunOverRanksYetIsRefusedWithItsKey) {
     }
     EXPECT_NE(message.find(expected), std::string::npos) << message;
     EXPECT_FALSE(fs::exists(dir));
+  }
+}
+
+Config exploding_slab(const std::string& dir) {
+  const std::string yaml = fmt::format(
+      "time: {{end: 0.01, dt: auto}}\n"
+      "integrator: {{type: velocity_verlet, energy_growth_limit: 0}}\n"
+      "bodies:\n"
+      "  - geometry: {{box: {{min: [0, 0, 0], max: [0.3, 0.1, 0.05]}}}}\n"
+      "    resolution: 0.02\n"
+      "    material: {{density: 1000, bulk_modulus: 2.0e6, shear_modulus: 1.0e6}}\n"
+      "constraints:\n"
+      "  - {{region: {{box: {{min: [0.27, -1, -1], max: [1, 1, 1]}}}}, velocity: [1e300, 0, 0]}}\n"
+      "output: {{dir: {}, every: 1}}\n",
+      dir);
+  return parse_config(yaml, "exploding_slab.yaml");
+}
+
+// The slab without fracture, its far end driven at 1e300 m/s, the energy-growth check off: the
+// state becomes non-finite there first, within a few steps. Every rank stops with
+// one rank's message: the same step, the same first particle by its id in the whole scene, and
+// its reference position and body, which on several ranks only the rank that owns it knows (the
+// far end is the last rank's).
+TEST(DistributedRunLoop, NonFiniteStateNamesOneRanksParticleOnEveryRank) {
+  // the message of the first `size` ranks' run (up to the output folder's name); the others wait
+  auto stopped_on = [&](int size, const std::string& dir) {
+    std::string message = "(not stopped)";
+    MPI_Comm comm = first_ranks(size);
+    if (comm != MPI_COMM_NULL) {
+      try {
+        RunOptions options;
+        options.comm = comm;
+        run_simulation(exploding_slab(dir), options);
+      } catch (const RunError& e) {
+        message = e.what();
+        message = message.substr(0, message.find(" Outputs up to this point"));
+      }
+      MPI_Comm_free(&comm);
+    }
+    MPI_Barrier(PETSC_COMM_WORLD);
+    return message;
+  };
+  std::string one = stopped_on(1, scratch("nonfinite_one"));  // on rank 0
+  const std::string all = stopped_on(test::ranks(), scratch("nonfinite_all"));
+  int length = static_cast<int>(one.size());
+  ASSERT_EQ(MPI_Bcast(&length, 1, MPI_INT, 0, PETSC_COMM_WORLD), MPI_SUCCESS);
+  one.resize(length);
+  ASSERT_EQ(MPI_Bcast(one.data(), length, MPI_CHAR, 0, PETSC_COMM_WORLD), MPI_SUCCESS);
+  EXPECT_NE(one.find("state became non-finite at step"), std::string::npos) << one;
+  EXPECT_EQ(all, one);
+  // the particle is the far end's, owned on several ranks by another rank than the root
+  const std::size_t at = one.find("first at particle "), x_at = one.find("reference position ");
+  ASSERT_NE(at, std::string::npos) << one;
+  ASSERT_NE(x_at, std::string::npos) << one;
+  const int particle = std::stoi(one.substr(at + 18));
+  EXPECT_GT(std::stod(one.substr(x_at + 19)), 0.2) << one;
+  const Scene scene = build_scene(exploding_slab(scratch("nonfinite_scene")));
+  const std::vector<int> boundaries = split_rows_by_bonds(scene.families.offsets, test::ranks());
+  if (test::ranks() > 1) {
+    EXPECT_GT(owner_of(boundaries, particle), 0) << one;
   }
 }
 
