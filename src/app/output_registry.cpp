@@ -11,13 +11,14 @@ namespace {
 std::vector<OutputKind>& kinds() {
   static std::vector<OutputKind> registered = [] {
     std::vector<OutputKind> builtin;
-    add_kind(
-        builtin,
-        {"probes",
-         {},
-         nullptr,
-         [](const OutputContext& c) { return std::make_unique<ProbesOutput>(c.scene, c.ledger, c.halo); }},
-        "output");
+    add_kind(builtin,
+             {"probes",
+              {},
+              nullptr,
+              [](const OutputContext& c) {
+                return std::make_unique<ProbesOutput>(c.scene, c.ledger, c.halo);
+              }},
+             "output");
     add_kind(
         builtin,
         {"frames",

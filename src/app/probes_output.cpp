@@ -31,8 +31,7 @@ std::vector<std::vector<int>> member_boundaries(MPI_Comm comm,
   const int probes = static_cast<int>(members.size());
   std::vector<int> own, all(std::size_t(size) * probes);
   for (const auto& m : members) own.push_back(static_cast<int>(m.size()));
-  if (MPI_Allgather(own.data(), probes, MPI_INT, all.data(), probes, MPI_INT, comm) !=
-      MPI_SUCCESS)
+  if (MPI_Allgather(own.data(), probes, MPI_INT, all.data(), probes, MPI_INT, comm) != MPI_SUCCESS)
     throw RunError("MPI: MPI_Allgather failed");
   std::vector<std::vector<int>> boundaries(probes, std::vector<int>(size + 1, 0));
   for (int p = 0; p < probes; ++p)
@@ -61,8 +60,7 @@ ProbesOutput::ProbesOutput(const Scene& scene, EnergyLedger& ledger, const Halo*
 
 void ProbesOutput::start(const RunParts& run) {
   run.ranks.write([&] {
-    if (run.ranks.root())
-      file_ = std::make_unique<ProbesCsv>(path_, run.config, ledger_.names());
+    if (run.ranks.root()) file_ = std::make_unique<ProbesCsv>(path_, run.config, ledger_.names());
   });
 }
 

@@ -127,7 +127,7 @@ int RunRanks::min(int value) const { return distributed() ? min_over_ranks(comm_
 std::vector<double> RunRanks::gather(const std::vector<double>& values, int width) const {
   if (!distributed()) return values;
   return gather_owned(comm_, halo_->boundaries(), values.data() + std::ptrdiff_t(width) * begin_,
-                           width);
+                      width);
 }
 
 std::vector<std::uint8_t> RunRanks::gather_bonds(const std::vector<std::uint8_t>& values) const {

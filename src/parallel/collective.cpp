@@ -70,12 +70,12 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<int>& boundaries, co
 }  // namespace
 
 std::vector<double> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                      const double* own, int width) {
+                                 const double* own, int width) {
   return gather_rows(comm, boundaries, own, width);
 }
 
 std::vector<std::uint8_t> gather_owned(MPI_Comm comm, const std::vector<int>& boundaries,
-                                            const std::uint8_t* own, int width) {
+                                       const std::uint8_t* own, int width) {
   return gather_rows(comm, boundaries, own, width);
 }
 

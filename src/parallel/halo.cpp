@@ -75,7 +75,9 @@ Halo::Rows Halo::own_and_ghost_rows(const Families& families, const std::vector<
       const int j = families.neighbors[b];
       if (j < rows.begin || j >= rows.end) rows.ghost_rows.push_back(j);
     }
-  auto by_id = [&families](int a, int b) { return families.global_row(a) < families.global_row(b); };
+  auto by_id = [&families](int a, int b) {
+    return families.global_row(a) < families.global_row(b);
+  };
   std::sort(rows.ghost_rows.begin(), rows.ghost_rows.end(), by_id);
   rows.ghost_rows.erase(std::unique(rows.ghost_rows.begin(), rows.ghost_rows.end()),
                         rows.ghost_rows.end());
@@ -86,8 +88,7 @@ Halo::Rows Halo::own_and_ghost_rows(const Families& families, const std::vector<
 namespace {
 
 // The first bond of each rank's own rows in the whole families' CSR, and the total.
-std::vector<int> own_bond_boundaries(MPI_Comm comm, const Families& families, int begin,
-                                     int end) {
+std::vector<int> own_bond_boundaries(MPI_Comm comm, const Families& families, int begin, int end) {
   int size = 1;
   check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
   const int own = families.offsets[end] - families.offsets[begin];

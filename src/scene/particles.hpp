@@ -52,8 +52,7 @@ struct Families {
   // The whole families' index of bond b of row i.
   long global_bond(int i, int b) const {
     if (whole()) return b;
-    if (i >= own_begin && i < end_own_row())
-      return long(global_offsets[i]) + (b - offsets[i]);
+    if (i >= own_begin && i < end_own_row()) return long(global_offsets[i]) + (b - offsets[i]);
     const int own_bonds = offsets[end_own_row()] - offsets[own_begin];
     return long(global_offsets[i]) + trimmed_position[b < offsets[own_begin] ? b : b - own_bonds];
   }
@@ -79,7 +78,6 @@ struct Families {
         local[std::size_t(width) * i + k] = whole_array[std::size_t(width) * global_id[i] + k];
     return local;
   }
-
 };
 
 // Builds the families: every particle of the same body within `horizon[body]` (δ in metres),

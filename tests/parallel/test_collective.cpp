@@ -70,7 +70,8 @@ TEST(Collective, GatherOwnedPutsEveryRankPieceInPlaceOnRankZero) {
   std::vector<double> own;
   for (int i = boundaries[test::rank()]; i < boundaries[test::rank() + 1]; ++i)
     for (int k = 0; k < width; ++k) own.push_back(10.0 * i + k);
-  const std::vector<double> gathered = gather_owned(PETSC_COMM_WORLD, boundaries, own.data(), width);
+  const std::vector<double> gathered =
+      gather_owned(PETSC_COMM_WORLD, boundaries, own.data(), width);
   if (test::rank() != 0) {
     EXPECT_TRUE(gathered.empty());
     return;

@@ -25,8 +25,8 @@
 #include "io/checkpoint_file.hpp"
 #include "io/vtu_reader.hpp"
 #include "parallel/ownership.hpp"
-#include "scene/scene.hpp"
 #include "ranks.hpp"
+#include "scene/scene.hpp"
 
 namespace fissure {
 namespace {

@@ -59,8 +59,9 @@ TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
   for (int i = 0; i < f.rows(); ++i) {
     const int g = f.global_row(i);
     for (int k = 0; k < 3; ++k)
-      wrong_particles += split.particles.reference[3 * i + k] != whole.particles.reference[3 * g + k] ||
-                         split.particles.velocity[3 * i + k] != whole.particles.velocity[3 * g + k];
+      wrong_particles +=
+          split.particles.reference[3 * i + k] != whole.particles.reference[3 * g + k] ||
+          split.particles.velocity[3 * i + k] != whole.particles.velocity[3 * g + k];
     wrong_particles += split.particles.volume[i] != whole.particles.volume[g] ||
                        split.particles.mass[i] != whole.particles.mass[g] ||
                        split.particles.body[i] != whole.particles.body[g];
@@ -102,7 +103,8 @@ TEST(SplitFamilies, KeepTheOwnAndGhostRowsOfTheWholeFamilies) {
   const std::vector<double> local_ids = f.localize_rows(ids, 2);
   ASSERT_EQ(local_ids.size(), 2 * std::size_t(f.rows()));
   for (int i = 0; i < f.rows(); ++i)
-    for (int k = 0; k < 2; ++k) misplaced += local_ids[2 * i + k] != double(2 * f.global_row(i) + k);
+    for (int k = 0; k < 2; ++k)
+      misplaced += local_ids[2 * i + k] != double(2 * f.global_row(i) + k);
   EXPECT_EQ(misplaced, 0);
   // what the split is for: the ranks' own rows hold every bond once, and a rank keeps fewer
   // bonds and particles
@@ -142,8 +144,9 @@ TEST(SplitFamilies, ModelOnThemEqualsOneRankBitwise) {
     part->forces(test::known_positions(local_y, halo).data(), force.data());
     int differing = 0;  // counted, not asserted: every rank must reach the collective calls
     for (int i = halo.begin(); i < halo.end(); ++i)
-      differing += std::memcmp(&force[3 * i], &expected[3 * std::size_t(split.families.global_row(i))],
-                               3 * sizeof(double)) != 0;
+      differing +=
+          std::memcmp(&force[3 * i], &expected[3 * std::size_t(split.families.global_row(i))],
+                      3 * sizeof(double)) != 0;
     EXPECT_EQ(differing, 0);
     EXPECT_EQ(part->stable_time_step(), reference->stable_time_step());
     const std::vector<char> kept = nearest_bonds(whole.families, kNearestMembers);
