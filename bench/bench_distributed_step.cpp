@@ -74,7 +74,9 @@ int run(int argc, char** argv) {
   const int n = scene.families.total_rows(), begin = halo.begin(), end = halo.end();
   fissure::State state{scene.particles.reference, scene.particles.velocity, 0.0};
   for (std::size_t k = 0; k < state.position.size(); ++k)
-    state.position[k] *= 1.0 + 1e-4 * std::sin(0.37 * k);
+    state.position[k] *=
+        1.0 + 1e-4 * std::sin(0.37 * double(3 * scene.families.global_row(static_cast<int>(k / 3)) +
+                                            k % 3));
   const double dt = 0.5 * model->stable_time_step();
   auto integrator = fissure::make_integrator("velocity_verlet", "bench");
   integrator->step(dynamics, state, dt);  // the first step also computes the first acceleration

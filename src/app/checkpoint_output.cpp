@@ -35,15 +35,19 @@ namespace {
 NamedArrays gathered(const RunParts& run, NamedArrays part) {
   const RunRanks& ranks = run.ranks;
   if (!ranks.distributed()) return part;
-  const std::size_t particles = run.scene.particles.count();
+  const std::size_t particles = run.scene.particles.count();  // this rank's: own and ghosts
   for (auto& [name, values] : part) {
     if (run.model.per_bond_state(name)) {
       values = ranks.gather_bonds(values);
       continue;
     }
-    const bool per_particle = (name.rfind("model.", 0) == 0 || name.rfind("integrator.", 0) == 0) &&
-                              !values.empty() && values.size() % particles == 0;
-    if (per_particle) values = ranks.gather(values, static_cast<int>(values.size() / particles));
+    // a whole number of values per particle on every rank (the ranks keep different numbers of
+    // particles, so a small array of another kind could pass on one rank alone)
+    const bool ours = name.rfind("model.", 0) == 0 || name.rfind("integrator.", 0) == 0;
+    const int width = ours && !values.empty() && values.size() % particles == 0
+                          ? static_cast<int>(values.size() / particles)
+                          : 0;
+    if (const int agreed = ranks.min(width); agreed > 0) values = ranks.gather(values, agreed);
   }
   return part;
 }

@@ -86,8 +86,7 @@ RowSplit RunRanks::split_over(MPI_Comm comm) {
           rank, size, share_counts};
 }
 
-RunRanks::RunRanks(const Scene& scene, MPI_Comm comm)
-    : end_(scene.particles.count()), particles_(scene.families.total_rows()) {
+RunRanks::RunRanks(const Scene& scene, MPI_Comm comm) : end_(scene.particles.count()) {
   comm = run_comm(comm, size_, rank_);
   if (comm == MPI_COMM_NULL) {
     if (!scene.boundaries.empty())

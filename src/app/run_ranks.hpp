@@ -41,8 +41,6 @@ class RunRanks {
   // This rank's own rows, in the scene's numbering (over several ranks its own, Families).
   int begin() const { return begin_; }
   int end() const { return end_; }
-  // The particles of the whole scene.
-  int particles() const { return particles_; }
   // begin() to end(), listed (Model::rows_energy); empty on one rank.
   const std::vector<int>& rows() const { return rows_; }
   // The halo, when distributed().
@@ -67,7 +65,7 @@ class RunRanks {
 
  private:
   MPI_Comm comm_ = MPI_COMM_NULL;
-  int rank_ = 0, size_ = 1, begin_ = 0, end_ = 0, particles_ = 0;
+  int rank_ = 0, size_ = 1, begin_ = 0, end_ = 0;
   std::vector<int> rows_;
   int first_bond_ = 0;                // this rank's first bond in its families' CSR
   std::unique_ptr<Halo> halo_;

@@ -156,9 +156,12 @@ void ReducedNewtonSystem::factorize(double gamma) {
       agree(dynamics_.halo()->comm(), [&] { factored = factor_.factorize(block_); });
       factored = min_over_ranks(dynamics_.halo()->comm(), factored);
     }
-    if (!factored)
-      throw RunError(fmt::format("CHOLMOD: the {}×{} system matrix is not positive definite",
-                                 system_.rows, system_.rows));
+    if (!factored) {
+      // over several ranks the whole system's size (system_ holds the rank's rows)
+      const int rows = distributed() ? 3 * dynamics_.model().families().total_rows() : system_.rows;
+      throw RunError(
+          fmt::format("CHOLMOD: the {}×{} system matrix is not positive definite", rows, rows));
+    }
     ++factorizations_;
   };
   try {

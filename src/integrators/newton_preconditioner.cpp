@@ -340,8 +340,11 @@ void NewtonPreconditioner::refresh(const double* z) {
 }
 
 RunError NewtonPreconditioner::not_positive_definite() const {
+  // over several ranks the whole system's size (matrix_ holds the rank's rows)
+  const int rows =
+      system_.distributed() ? 3 * system_.dynamics().model().families().total_rows() : matrix_.rows;
   return RunError(fmt::format("the {} preconditioner's {}×{} matrix is not positive definite",
-                              preconditioner_name(kind_), matrix_.rows, matrix_.rows));
+                              preconditioner_name(kind_), rows, rows));
 }
 
 void NewtonPreconditioner::apply(Vec r, Vec x) {

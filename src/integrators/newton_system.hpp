@@ -45,8 +45,8 @@ class NewtonSystem {
   double inertia() const { return inertia_; }
   Dynamics& dynamics() { return dynamics_; }
 
-  // Over several ranks (Dynamics::distribute) the system's arrays stay 3N in the global
-  // numbering, but it reads and writes only this rank's unknowns [first_unknown(),
+  // Over several ranks (Dynamics::distribute) the system's arrays stay 3N over the rank's rows
+  // (its own and its ghosts), but it reads and writes only its own unknowns [first_unknown(),
   // end_unknown()), and the points it is given must have current ghosts (Dynamics::share);
   // objective(), residual(), apply() and begin_step() are then collective, and objective()
   // returns the whole system's E. On one rank: all unknowns.

@@ -53,18 +53,14 @@ SharedBonds share_bonds(const Halo& halo, const Families& families) {
 
 }  // namespace
 
-namespace {
-
-// The own rows: the particles of this rank's range (whole families) or the rows
-// number_locally put first; the ghosts: the members of the own rows outside them, sorted by
-// their particles in the whole scene.
-}  // namespace
-
+// The own rows: the particles of this rank's range (whole families) or the range of them
+// number_locally kept; the ghosts: the members of the own rows outside them, sorted by their
+// particles in the whole scene.
 Halo::Rows Halo::own_and_ghost_rows(const Families& families, const std::vector<int>& boundaries,
                                     MPI_Comm comm) {
   const int rank = rank_in_split(comm, boundaries, families.total_rows(), "Halo");
   Halo::Rows rows;
-  rows.local = !families.global_id.empty();
+  rows.local = families.whole_rows >= 0;
   rows.begin = rows.local ? families.first_own_row() : boundaries[rank];
   rows.end = rows.local ? families.end_own_row() : boundaries[rank + 1];
   if (rows.end - rows.begin != boundaries[rank + 1] - boundaries[rank] ||

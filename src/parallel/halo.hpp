@@ -1,7 +1,8 @@
 #pragma once
 // The ghosts of one rank's rows: the family members it does not own, filled from their owners
 // (issue 18, item 1). Per-particle arrays are numbered as the families' rows: locally
-// (number_locally: the own rows, then the ghosts) or, for whole families, as the scene.
+// (number_locally: the own rows and the ghosts, in the order of their ids) or, for whole
+// families, as the scene.
 #include <mpi.h>
 
 #include <cstddef>
@@ -19,7 +20,7 @@ class Halo {
  public:
   // This rank (of comm) owns particles [boundaries[rank], boundaries[rank + 1]) of the whole
   // scene; every rank passes the same boundaries (split_rows_by_bonds). `families` are whole
-  // (those particles are its rows) or this rank's numbered locally (its own rows first).
+  // (those particles are its rows) or this rank's numbered locally (number_locally).
   // PETSc must be initialised. Collective.
   Halo(MPI_Comm comm, const Families& families, std::vector<int> boundaries);
 

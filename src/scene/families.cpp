@@ -291,7 +291,9 @@ Families number_locally(Families split, Particles& particles) {
   f.reference_length = std::move(split.reference_length);
   f.reverse = std::move(split.reverse);
   f.trimmed_position = std::move(split.trimmed_position);
-  f.own_begin = local_of[split.first_own_row()];
+  f.own_begin = static_cast<int>(
+      std::lower_bound(f.global_id.begin(), f.global_id.end(), split.first_own_row()) -
+      f.global_id.begin());
   f.own_end = f.own_begin + split.end_own_row() - split.first_own_row();
   f.whole_rows = n;
   particles = select(particles, f.global_id);

@@ -70,7 +70,7 @@ struct Families {
   // Returned as given when the rows are the scene's or its size is not the scene's.
   template <class T>
   std::vector<T> localize_rows(const std::vector<T>& whole_array, int width) const {
-    if (global_id.empty() || whole_array.size() != std::size_t(width) * total_rows())
+    if (whole_rows < 0 || whole_array.size() != std::size_t(width) * total_rows())
       return whole_array;
     std::vector<T> local(std::size_t(width) * rows());
     for (int i = 0; i < rows(); ++i)

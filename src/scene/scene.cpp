@@ -141,6 +141,12 @@ void build_scene_families(Scene& scene, const RowSplit& split) {
   sizes = {};
   scene.boundaries = split.boundaries(offsets);
   scene.part = split.part;
+  for (int p = 0; p < split.parts; ++p)  // the same on every rank: every rank stops alike
+    if (scene.boundaries.at(p + 1) == scene.boundaries.at(p))
+      throw InputError(scene.config.file, "bodies",
+                       fmt::format("{} particles are too few for {} ranks: rank {} would own "
+                                   "none; run on fewer ranks",
+                                   n, split.parts, p));
   // this rank's rows and ghosts, numbered on their own: the other particles are dropped
   scene.families = number_locally(
       split_families(scene.particles, scene.horizon_of_body, offsets,

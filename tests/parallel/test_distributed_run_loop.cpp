@@ -526,6 +526,36 @@ TEST(DistributedRunLoop, NonFiniteStateNamesOneRanksParticleOnEveryRank) {
   }
 }
 
+// Two particles cannot be split over three or more ranks (a rank would own none): every rank
+// refuses the scene with the same message before anything is written.
+TEST(DistributedRunLoop, MoreRanksThanParticlesIsRefusedOnEveryRank) {
+  if (test::ranks() < 3) GTEST_SKIP() << "two particles split over one or two ranks";
+  const std::string dir = scratch("too_few"), points = dir + "_points.txt";
+  if (test::rank() == 0) std::ofstream(points) << "0 0 0 1e-6\n0.01 0 0 1e-6\n";
+  MPI_Barrier(PETSC_COMM_WORLD);
+  const std::string yaml = fmt::format(
+      "time: {{end: 1.0e-3, dt: auto}}\n"
+      "integrator: {{type: velocity_verlet}}\n"
+      "bodies:\n"
+      "  - geometry: {{points: {{file: {}}}}}\n"
+      "    resolution: 0.01\n"
+      "    material: {{density: 1000, bulk_modulus: 2.0e6, shear_modulus: 1.0e6}}\n"
+      "output: {{dir: {}}}\n",
+      points, dir);
+  std::string message;
+  try {
+    RunOptions options;
+    options.comm = PETSC_COMM_WORLD;
+    run_simulation(parse_config(yaml, "two_points.yaml"), options);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find(fmt::format("2 particles are too few for {} ranks", test::ranks())),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
 // A write that fails on one rank only (the last rank's file-size limit, below one piece of a
 // frame) stops the run on every rank with that rank's file and reason, within the test's
 // timeout; rank 0 records the failure in summary.json.

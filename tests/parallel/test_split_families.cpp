@@ -1,9 +1,9 @@
 // Families split over ranks (issue 18: memory per rank that scales): each rank keeps its own
 // rows of the whole families and, of its ghosts' rows, their bonds to its own rows, and only
-// those particles, numbered on their own (own rows first, then the ghosts) with their ids in the
-// whole scene and the whole families' bond numbering at hand for checkpoints and the bond star
-// forest; a model on them gets the forces, stable step and nearest members one rank gets; and
-// the fragments of a run are counted from every rank's rows.
+// those particles, numbered on their own in the order of their ids in the whole scene and the whole
+// families' bond numbering at hand for checkpoints and the bond star forest; a model on them gets
+// the forces, stable step and nearest members one rank gets; and the fragments of a run are counted
+// from every rank's rows.
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
