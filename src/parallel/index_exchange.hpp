@@ -36,7 +36,6 @@ class IndexExchange {
   int end() const { return boundaries_[rank_ + 1]; }
   MPI_Comm comm() const { return comm_; }
   const std::vector<int>& boundaries() const { return boundaries_; }
-  const std::vector<int>& needed() const { return needed_; }
   // values[k * width .. k * width + width) of every needed k from its owner. Collective: every
   // rank calls it with the same T and width.
   template <class T>
