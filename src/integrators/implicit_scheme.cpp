@@ -14,8 +14,12 @@ ImplicitScheme::ImplicitScheme(Scheme scheme, double rho_infinity) {
       return;
     case Scheme::sdirk3:
     case Scheme::sdirk4:
+    case Scheme::esdirk4:
       kind_ = Kind::sdirk;
-      tableau_ = scheme == Scheme::sdirk3 ? &sdirk3_tableau() : &sdirk4_tableau();
+      tableau_ = scheme == Scheme::sdirk3   ? &sdirk3_tableau()
+                 : scheme == Scheme::sdirk4 ? &sdirk4_tableau()
+                                            : &esdirk4_tableau();
+      first_implicit_ = tableau_->explicit_stage(0) ? 1 : 0;
       return;
     case Scheme::alpha: {
       const double r = rho_infinity;  // Chung & Hulbert (1993), Eqs 25 and 17
@@ -53,6 +57,12 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
       if (stage == 0) {
         stage_velocity_.assign(t.stages, std::vector<double>(n));
         stage_acceleration_.assign(t.stages, std::vector<double>(n));
+      }
+      if (t.explicit_stage(stage)) {
+        // An ESDIRK's first stage: Y_1 = y_n, V_1 = v_n, V'_1 = a_n; no minimisation.
+        stage_velocity_[stage].assign(v, v + n);
+        stage_acceleration_[stage].assign(a, a + n);
+        return;
       }
       explicit_position_.assign(y, y + n);
       explicit_velocity_.assign(v, v + n);
@@ -99,10 +109,10 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
 }
 
 std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
-  if (kind_ == Kind::sdirk && stage_ > 0) return last_minimiser_;
+  if (later_stage()) return last_minimiser_;
   std::vector<double> z(state.position.size());
   const double step = kind_ == Kind::static_equilibrium ? 0.0
-                      : kind_ == Kind::sdirk            ? tableau_->c(0) * h
+                      : kind_ == Kind::sdirk            ? tableau_->c(stage_) * h
                                                         : (1 - alpha_f_) * h;
   for (std::size_t k = 0; k < z.size(); ++k) z[k] = state.position[k] + step * state.velocity[k];
   return z;

@@ -32,7 +32,8 @@ class ImplicitScheme {
   const std::vector<double>& target() const { return target_; }
   // Newton's starting guess, z at constant velocity: ỹ would add h²a_n, which after a sudden
   // release (a_n large, h large) lands far outside the basin of a good Newton start. For a later
-  // SDIRK stage: the previous stage's minimiser.
+  // SDIRK stage: the previous stage's minimiser. An ESDIRK's first implicit stage starts as an
+  // SDIRK's first does.
   std::vector<double> guess(const State& state, double h) const;
   // z of a particle that moves at velocity u through the step (held by a constraint), for the
   // stage last predicted.
@@ -43,8 +44,11 @@ class ImplicitScheme {
   // `acceleration`.
   void correct(const std::vector<double>& z, State& state, std::vector<double>& acceleration,
                double h) const;
-  // True while a stage after an SDIRK step's first is being solved.
-  bool later_stage() const { return kind_ == Kind::sdirk && stage_ > 0; }
+  // True while a stage after an SDIRK step's first implicit one is being solved.
+  bool later_stage() const { return kind_ == Kind::sdirk && stage_ > first_implicit_; }
+  // True if the stage last predicted is explicit (an ESDIRK's first): predict() recorded it,
+  // and it has no minimisation and no finish_stage().
+  bool explicit_stage() const { return tableau_ && tableau_->explicit_stage(stage_); }
   bool is_static() const { return kind_ == Kind::static_equilibrium; }
 
  private:
@@ -58,6 +62,7 @@ class ImplicitScheme {
   // acceleration Ȧ_i; Ŷ and V̂ of the stage being solved (the explicit part of its sums).
   const SdirkTableau* tableau_ = nullptr;
   int stage_ = 0;
+  int first_implicit_ = 0;  // 1 for an ESDIRK
   std::vector<std::vector<double>> stage_velocity_, stage_acceleration_;
   std::vector<double> explicit_position_, explicit_velocity_;
   std::vector<double> last_minimiser_;

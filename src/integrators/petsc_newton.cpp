@@ -461,6 +461,9 @@ void PetscNewton::bonds_changed() {
   if (!solver_) return;
   solver_->preconditioner->bonds_changed();
   solver_->pending = Refreshes::bonds;
+  // a_n (Newmark's and an ESDIRK's first stage) from the forces of the bonds left, not from the
+  // step's difference formula over the bonds it started with.
+  solver_->have_acceleration = false;
 }
 
 void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
@@ -532,6 +535,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   };
   for (int stage = 0; stage < s.scheme.stages(); ++stage) {
     s.scheme.predict(state, s.acceleration, dynamics.damping(), dt, stage);
+    if (s.scheme.explicit_stage()) continue;
     z = s.system.begin_step(s.scheme, state, dt, load);
     s.floor = residual_floor(s, z);
     // auto: the exact tangent converges quadratically where A M + K is positive definite; where

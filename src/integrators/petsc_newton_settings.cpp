@@ -17,6 +17,7 @@ const std::vector<std::pair<std::string, S::Scheme>> kSchemes = {
     {"alpha", S::Scheme::alpha},
     {"sdirk3", S::Scheme::sdirk3},
     {"sdirk4", S::Scheme::sdirk4},
+    {"esdirk4", S::Scheme::esdirk4},
     {"static", S::Scheme::static_equilibrium}};
 const std::vector<std::pair<std::string, S::Tangent>> kTangents = {
     {"auto", S::Tangent::automatic},

@@ -11,7 +11,7 @@
 namespace fissure {
 
 struct PetscNewtonSettings final : IntegratorOptions {
-  enum class Scheme { backward_euler, newmark, alpha, sdirk3, sdirk4, static_equilibrium };
+  enum class Scheme { backward_euler, newmark, alpha, sdirk3, sdirk4, esdirk4, static_equilibrium };
   Scheme scheme = Scheme::backward_euler;
   double rho_infinity = 0.5;  // alpha: spectral radius at infinite frequency
   int steps = 1;              // static: load increments over which loads ramp

@@ -40,7 +40,28 @@ SdirkTableau hairer_wanner() {
           true};
 }
 
+// Kennedy & Carpenter, Appl. Numer. Math. 44 (2003), ARK4(3)6L[2]SA, its implicit tableau
+// (ESDIRK): an explicit first stage, then five with γ = 1/4 (c = 1/2, 83/250, 31/50, 17/20, 1),
+// stiffly accurate, L-stable, stage order 2.
+SdirkTableau kennedy_carpenter() {
+  // clang-format off
+  const std::vector<double> a = {
+      0,                           0,                      0,                      0,                  0,             0,
+      1. / 4,                      1. / 4,                 0,                      0,                  0,             0,
+      8611. / 62500,               -1743. / 31250,         1. / 4,                 0,                  0,             0,
+      5012029. / 34652500,         -654441. / 2922500,     174375. / 388108,       1. / 4,             0,             0,
+      15267082809. / 155376265600, -71443401. / 120774400, 730878875. / 902184768, 2285395. / 8070912, 1. / 4,        0,
+      82889. / 524892,             0,                      15625. / 83664,         69875. / 102672,    -2260. / 8211, 1. / 4};
+  // clang-format on
+  return {"esdirk4", 6, 4, 0.25, a, std::vector<double>(a.end() - 6, a.end()), true};
+}
+
 }  // namespace
+
+const SdirkTableau& esdirk4_tableau() {
+  static const SdirkTableau tableau = kennedy_carpenter();
+  return tableau;
+}
 
 const SdirkTableau& sdirk3_tableau() {
   static const SdirkTableau tableau = alexander();

@@ -53,6 +53,7 @@ std::vector<Case> cases() {
   c.push_back({petsc("alpha"), 2, "petsc_newton_alpha"});
   c.push_back({petsc("sdirk3"), 3, "petsc_newton_sdirk3"});
   c.push_back({petsc("sdirk4"), 4, "petsc_newton_sdirk4"});
+  c.push_back({petsc("esdirk4"), 4, "petsc_newton_esdirk4"});
   for (const auto& m : arkode_methods()) c.push_back({arkode(m.name), double(m.order), m.name});
   return c;
 }

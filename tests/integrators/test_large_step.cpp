@@ -167,7 +167,7 @@ TEST_P(LargeStepSdirk, EnergyNeverGrows) {
   EXPECT_LT(run.final_energy, 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Schemes, LargeStepSdirk, ::testing::Values("sdirk3", "sdirk4"),
+INSTANTIATE_TEST_SUITE_P(Schemes, LargeStepSdirk, ::testing::Values("sdirk3", "sdirk4", "esdirk4"),
                          [](const auto& info) { return std::string(info.param); });
 
 // ARKODE's L-stable SDIRK and IMEX ARK methods at fixed step: the energy never grows (1e-9
