@@ -470,10 +470,12 @@ void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvi
   Solver& s = *solver_;
   const State start = state;
   const std::vector<double> acceleration = s.acceleration;
+  const bool have_acceleration = s.have_acceleration;
   const std::string failure = attempt(dynamics, state, dt);
   if (failure.empty()) return;
   state = start;
   s.acceleration = acceleration;
+  s.have_acceleration = have_acceleration;
   if (halvings == 0)
     throw RunError(settings_.max_step_halvings > 0 && !s.scheme.is_static()
                        ? fmt::format("{} (the step was already halved {} times: "

@@ -108,12 +108,16 @@ TEST(FactorReuse, RefreshesWhenTheStepSizeChanges) {
 // evaluation of the old bonds is not reused: the trajectory equals, bit for bit, that of an
 // integrator created after the breaking (both factorize at the same point and evaluate the same
 // points; a kept stale F(y_n) would start Newton from the unbroken residual and change the
-// iterates).
-TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
+// iterates). Newmark and ESDIRK4 also use a_n (Newmark's predictor, ESDIRK4's explicit first
+// stage): kept from the last step's difference formula over the old bonds it would differ from
+// the new integrator's, which takes it from the forces of the bonds left.
+class BondsBreak : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BondsBreak, RefreshesAndForgetsTheOldForces) {
   auto v = test::make_vibration();
   auto w = test::make_vibration();
   const double dt = 10 * v->stable_dt;
-  auto integrator = make(newton("backward_euler"));
+  auto integrator = make(newton(GetParam()));
   State s = v->initial;
   for (int k = 0; k < 3; ++k) integrator->step(*v->dynamics, s, dt);
   // Break every bond of particle 0 in both models, then go on from the same state.
@@ -128,7 +132,7 @@ TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
   // old bonds.
   std::fill(s.velocity.begin(), s.velocity.end(), 0.0);
   State t = s;
-  auto after = make(newton("backward_euler"));
+  auto after = make(newton(GetParam()));
   for (int k = 0; k < 3; ++k) {
     integrator->step(*v->dynamics, s, dt);
     after->step(*w->dynamics, t, dt);
@@ -140,6 +144,10 @@ TEST(FactorReuse, RefreshesAndForgetsTheOldForcesWhenBondsBreak) {
               difference / reach(*v, t.position));
   EXPECT_EQ(difference, 0.0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Schemes, BondsBreak,
+                         ::testing::Values("backward_euler", "newmark", "esdirk4"),
+                         [](const auto& info) { return std::string(info.param); });
 
 // Slow convergence refreshes: with a contraction limit no modified-Newton iteration can meet,
 // or an iteration limit of 1, every Newton iteration after the first of each step's solve
