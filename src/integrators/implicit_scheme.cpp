@@ -19,7 +19,6 @@ ImplicitScheme::ImplicitScheme(Scheme scheme, double rho_infinity) {
       tableau_ = scheme == Scheme::sdirk3   ? &sdirk3_tableau()
                  : scheme == Scheme::sdirk4 ? &sdirk4_tableau()
                                             : &esdirk4_tableau();
-      first_implicit_ = tableau_->explicit_stage(0) ? 1 : 0;
       return;
     case Scheme::alpha: {
       const double r = rho_infinity;  // Chung & Hulbert (1993), Eqs 25 and 17

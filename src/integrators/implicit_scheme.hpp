@@ -45,7 +45,9 @@ class ImplicitScheme {
   void correct(const std::vector<double>& z, State& state, std::vector<double>& acceleration,
                double h) const;
   // True while a stage after an SDIRK step's first implicit one is being solved.
-  bool later_stage() const { return kind_ == Kind::sdirk && stage_ > first_implicit_; }
+  bool later_stage() const {
+    return kind_ == Kind::sdirk && stage_ > (tableau_->explicit_stage(0) ? 1 : 0);
+  }
   // True if the stage last predicted is explicit (an ESDIRK's first): predict() recorded it,
   // and it has no minimisation and no finish_stage().
   bool explicit_stage() const { return tableau_ && tableau_->explicit_stage(stage_); }
@@ -62,7 +64,6 @@ class ImplicitScheme {
   // acceleration Ȧ_i; Ŷ and V̂ of the stage being solved (the explicit part of its sums).
   const SdirkTableau* tableau_ = nullptr;
   int stage_ = 0;
-  int first_implicit_ = 0;  // 1 for an ESDIRK
   std::vector<std::vector<double>> stage_velocity_, stage_acceleration_;
   std::vector<double> explicit_position_, explicit_velocity_;
   std::vector<double> last_minimiser_;

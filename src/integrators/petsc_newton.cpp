@@ -468,14 +468,18 @@ void PetscNewton::bonds_changed() {
 
 void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
   Solver& s = *solver_;
+  if (!s.have_acceleration) {
+    s.acceleration.resize(state.position.size());
+    dynamics.acceleration(state.time, state.position.data(), state.velocity.data(),
+                          s.acceleration.data());
+    s.have_acceleration = true;
+  }
   const State start = state;
   const std::vector<double> acceleration = s.acceleration;
-  const bool have_acceleration = s.have_acceleration;
   const std::string failure = attempt(dynamics, state, dt);
   if (failure.empty()) return;
   state = start;
   s.acceleration = acceleration;
-  s.have_acceleration = have_acceleration;
   if (halvings == 0)
     throw RunError(settings_.max_step_halvings > 0 && !s.scheme.is_static()
                        ? fmt::format("{} (the step was already halved {} times: "
@@ -490,12 +494,6 @@ void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvi
 
 std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   Solver& s = *solver_;
-  if (!s.have_acceleration) {
-    s.acceleration.resize(state.position.size());
-    dynamics.acceleration(state.time, state.position.data(), state.velocity.data(),
-                          s.acceleration.data());
-    s.have_acceleration = true;
-  }
   // static: loads ramp linearly over integrator.steps increments, then stay
   const double load =
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;

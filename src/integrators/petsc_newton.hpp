@@ -36,7 +36,8 @@ class PetscNewton final : public Integrator {
   // Advances by dt; where Newton fails, redoes the step as two halves, up to `halvings` deep.
   // Throws RunError with the state as it was before the step when that fails too.
   void advance(Dynamics& dynamics, State& state, double dt, int halvings);
-  // One step of dt: empty on success, else why it failed (the state is then partly updated).
+  // One step of dt from a known a_n: empty on success, else why it failed (the state is then
+  // partly updated).
   std::string attempt(Dynamics& dynamics, State& state, double dt);
 
   PetscNewtonSettings settings_;
