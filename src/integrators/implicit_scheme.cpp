@@ -76,6 +76,7 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
         }
       }
       const double gh = t.gamma * h;
+      damping_ = c;
       inertia_ = (1 + gh * c) / (gh * gh);
       held_fraction_ = t.c(stage);
       for (std::size_t k = 0; k < n; ++k)
@@ -108,8 +109,16 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
 }
 
 std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
-  if (later_stage()) return last_minimiser_;
   std::vector<double> z(state.position.size());
+  if (kind_ == Kind::sdirk && stage_ > 0) {
+    // Y_i = ỹ + M⁻¹(F + f)(Y_i)/A, with M⁻¹(F + f) = V' + cV taken from the previous stage.
+    const double* v = stage_velocity_[stage_ - 1].data();
+    const double* a = stage_acceleration_[stage_ - 1].data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < z.size(); ++k)
+      z[k] = target_[k] + (a[k] + damping_ * v[k]) / inertia_;
+    return z;
+  }
   const double step = kind_ == Kind::static_equilibrium ? 0.0
                       : kind_ == Kind::sdirk            ? tableau_->c(stage_) * h
                                                         : (1 - alpha_f_) * h;
@@ -128,7 +137,31 @@ void ImplicitScheme::finish_stage(const std::vector<double>& z, double h) {
     velocity[k] = (z[k] - explicit_position_[k]) / gh;
     acceleration[k] = (velocity[k] - explicit_velocity_[k]) / gh;
   }
-  last_minimiser_ = z;
+}
+
+ImplicitScheme::ErrorSums ImplicitScheme::local_error(double h, const std::vector<double>& mass,
+                                                      const std::vector<char>& fixed,
+                                                      std::size_t first, std::size_t end) const {
+  const SdirkTableau& t = *tableau_;
+  ErrorSums sums;
+  double position = 0, velocity = 0, free_mass = 0;
+#pragma omp parallel for schedule(static) reduction(+ : position, velocity, free_mass)
+  for (std::size_t k = first; k < end; ++k) {
+    if (fixed[k]) continue;
+    double dy = 0, dv = 0;  // h Σ (b_i − b̂_i) V_i and h Σ (b_i − b̂_i) V'_i
+    for (int i = 0; i < t.stages; ++i) {
+      const double w = h * (t.b[i] - t.b_embedded[i]);
+      dy += w * stage_velocity_[i][k];
+      dv += w * stage_acceleration_[i][k];
+    }
+    position += mass[k] * dy * dy;
+    velocity += mass[k] * dv * dv;
+    free_mass += mass[k];
+  }
+  sums.position = position;
+  sums.velocity = velocity;
+  sums.mass = free_mass;
+  return sums;
 }
 
 void ImplicitScheme::correct(const std::vector<double>& z, State& state,

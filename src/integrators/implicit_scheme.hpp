@@ -31,9 +31,10 @@ class ImplicitScheme {
   // ỹ.
   const std::vector<double>& target() const { return target_; }
   // Newton's starting guess, z at constant velocity: ỹ would add h²a_n, which after a sudden
-  // release (a_n large, h large) lands far outside the basin of a good Newton start. For a later
-  // SDIRK stage: the previous stage's minimiser. An ESDIRK's first implicit stage starts as an
-  // SDIRK's first does.
+  // release (a_n large, h large) lands far outside the basin of a good Newton start. An SDIRK
+  // stage after another (an ESDIRK's first implicit stage after its explicit one) starts from ỹ
+  // plus the previous stage's acceleration held: its error is O(h³), where the previous stage's
+  // minimiser's is O(h).
   std::vector<double> guess(const State& state, double h) const;
   // z of a particle that moves at velocity u through the step (held by a constraint), for the
   // stage last predicted.
@@ -52,6 +53,17 @@ class ImplicitScheme {
   // and it has no minimisation and no finish_stage().
   bool explicit_stage() const { return tableau_ && tableau_->explicit_stage(stage_); }
   bool is_static() const { return kind_ == Kind::static_equilibrium; }
+  // γ of an SDIRK scheme's stages, else 0.
+  double gamma() const { return tableau_ ? tableau_->gamma : 0; }
+  // True for an SDIRK scheme whose tableau has embedded weights (local_error below).
+  bool has_error_estimate() const { return tableau_ && !tableau_->b_embedded.empty(); }
+  // The step just solved's local error estimate from the embedded weights, d = h Σ (b_i − b̂_i)
+  // (V_i, V'_i), as sums over the free unknowns [first, end) of m d_y², m d_v² and m.
+  struct ErrorSums {
+    double position = 0, velocity = 0, mass = 0;
+  };
+  ErrorSums local_error(double h, const std::vector<double>& mass, const std::vector<char>& fixed,
+                        std::size_t first, std::size_t end) const;
 
  private:
   enum class Kind { backward_euler, newmark_alpha, sdirk, static_equilibrium } kind_;
@@ -66,7 +78,7 @@ class ImplicitScheme {
   int stage_ = 0;
   std::vector<std::vector<double>> stage_velocity_, stage_acceleration_;
   std::vector<double> explicit_position_, explicit_velocity_;
-  std::vector<double> last_minimiser_;
+  double damping_ = 0;  // c of the stage being solved
 };
 
 }  // namespace fissure

@@ -34,7 +34,7 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   for (double& f : external_) f *= load_factor;
   // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
   // ωh ≫ 1 at large steps carry large velocities), from y: whichever has the lower potential.
-  // A later SDIRK stage starts from the previous stage's minimiser.
+  // A later SDIRK stage starts from ỹ plus the previous stage's acceleration (scheme.guess).
   std::vector<double> z = scheme.guess(state, h);
   std::vector<double> stay = state.position;
   fixed_.assign(z.size(), 0);

@@ -82,6 +82,15 @@ struct PetscNewton::Solver {
   bool linear_rtol_fixed = false;    // the user set -ksp_rtol: no stop at the Newton target
   long linear_solves_to_target = 0;  // Krylov solves stopped at the Newton target, not -ksp_rtol
   bool options_checked = false;
+  // Newton's error test (newton_test: local_error, docs/integrators.md): the estimated error
+  // η|Δz_k| of the stage's positions against 1% of the last step's local error estimate, in
+  // positions and, divided by γh, in velocities (the stage velocity is (Y_i − Ŷ_i)/(γh)).
+  bool error_test = false;
+  double local_error_position = 0, local_error_velocity = 0;  // mass-weighted RMS; 0: none yet
+  double gamma_h = 0;        // γh of the step being taken
+  double eta = -1;           // θ/(1 − θ) of the last contraction measured; < 0: none yet
+  double last_update = 0;    // |Δz_{k−1}|, mass-weighted RMS
+  long error_test_stops = 0;  // Newton solves the error test stopped
 };
 
 namespace {
@@ -251,14 +260,53 @@ PetscErrorCode view_preconditioner(PC pc, PetscViewer viewer) {
   return guarded(s, [&] { s->preconditioner->view(viewer); });
 }
 
-// PETSc's tests (-snes_rtol, -snes_atol, ... as the user set them), and convergence at the
-// round-off floor of the residual.
+// Fraction of the step's local error estimate the Newton error may reach (the free block of
+// test_sdirk_newton_default.cpp: 1% leaves ESDIRK4 a Newton error of 0.02 of its own).
+constexpr double kNewtonErrorFraction = 0.01;
+
+// Hairer and Wanner's test for simplified Newton (Solving ODEs II, IV.8): after iteration k the
+// error is about η|Δz_k| with η = θ/(1 − θ), θ = |Δz_k|/|Δz_{k−1}|; after the first, η of the
+// last solve that measured one. Collective over the ranks.
+void newton_error_test(Solver& s, SNES snes, PetscInt it, SNESConvergedReason* reason) {
+  if (it == 0) {
+    s.last_update = 0;
+    return;
+  }
+  Vec dz;
+  const PetscScalar* update;
+  petsc_check(SNESGetSolutionUpdate(snes, &dz), "SNESGetSolutionUpdate");
+  petsc_check(VecGetArrayRead(dz, &update), "VecGetArrayRead");
+  const auto& m = s.system.mass();
+  const auto& fixed = s.system.fixed();
+  const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
+  double sum = 0, mass = 0;
+  for (std::size_t k = first; k < end; ++k)
+    if (!fixed[k]) sum += m[k] * update[k - first] * update[k - first], mass += m[k];
+  petsc_check(VecRestoreArrayRead(dz, &update), "VecRestoreArrayRead");
+  const double size = std::sqrt(s.system.sum_over_ranks(sum) / s.system.sum_over_ranks(mass));
+  if (it >= 2 && s.last_update > 0) {
+    const double theta = size / s.last_update;
+    s.eta = theta < 1 ? theta / (1 - theta) : -1;
+  }
+  s.last_update = size;
+  if (*reason != SNES_CONVERGED_ITERATING || s.eta < 0 || s.local_error_position <= 0) return;
+  const double tolerance = kNewtonErrorFraction *
+                           std::min(s.local_error_position, s.gamma_h * s.local_error_velocity);
+  if (s.eta * size <= tolerance) {
+    *reason = SNES_CONVERGED_SNORM_RELATIVE;
+    ++s.error_test_stops;
+  }
+}
+
+// PETSc's tests (-snes_rtol, -snes_atol, ... as the user set them), convergence at the
+// round-off floor of the residual, and the error test where it is on.
 PetscErrorCode converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                          SNESConvergedReason* reason, void* context) {
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
-  const auto* s = static_cast<Solver*>(context);
+  auto* s = static_cast<Solver*>(context);
   if (*reason == SNES_CONVERGED_ITERATING && it > 0 && fnorm <= s->floor)
     *reason = SNES_CONVERGED_FNORM_ABS;
+  if (s->error_test) return guarded(s, [&] { newton_error_test(*s, snes, it, reason); });
   return 0;
 }
 
@@ -374,6 +422,18 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   PetscBool set = PETSC_FALSE;
   petsc_check(PetscOptionsHasName(s.options, nullptr, "-ksp_rtol", &set), "PetscOptionsHasName");
   s.linear_rtol_fixed = set;
+  using T = PetscNewtonSettings::NewtonTest;
+  s.error_test = settings.newton_test == T::local_error;
+  if (settings.newton_test == T::automatic &&
+      settings.scheme == PetscNewtonSettings::Scheme::esdirk4) {
+    // a user who sets the residual's tolerances asks for the residual test
+    bool residual_set = false;
+    for (const char* name : {"-snes_rtol", "-snes_atol", "-snes_stol"}) {
+      petsc_check(PetscOptionsHasName(s.options, nullptr, name, &set), "PetscOptionsHasName");
+      residual_set = residual_set || set;
+    }
+    s.error_test = !residual_set;
+  }
 }
 
 // Near the solution the potential's decrease along the Newton step, at most |r|·|Δz|, falls
@@ -464,6 +524,7 @@ void PetscNewton::bonds_changed() {
   // a_n (Newmark's and an ESDIRK's first stage) from the forces of the bonds left, not from the
   // step's difference formula over the bonds it started with.
   solver_->have_acceleration = false;
+  solver_->local_error_position = solver_->local_error_velocity = 0;
 }
 
 void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvings) {
@@ -480,6 +541,8 @@ void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvi
   if (failure.empty()) return;
   state = start;
   s.acceleration = acceleration;
+  // the error test waits for a step of the new size to estimate its local error
+  s.local_error_position = s.local_error_velocity = 0;
   if (halvings == 0)
     throw RunError(settings_.max_step_halvings > 0 && !s.scheme.is_static()
                        ? fmt::format("{} (the step was already halved {} times: "
@@ -499,6 +562,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;
   std::vector<double> z;
   const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
+  s.gamma_h = s.scheme.gamma() * dt;
   // One Newton solve from z with the given tangent; false if PETSc failed (e.g. the tangent
   // was not positive definite) or Newton did not converge.
   PetscInt iterations = 0;
@@ -585,6 +649,13 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     dynamics.share(z.data());
     s.scheme.finish_stage(z, dt);
   }
+  if (s.error_test) {
+    const ImplicitScheme::ErrorSums e = s.scheme.local_error(
+        dt, s.system.mass(), s.system.fixed(), first, end);
+    const double mass = s.system.sum_over_ranks(e.mass);
+    s.local_error_position = mass > 0 ? std::sqrt(s.system.sum_over_ranks(e.position) / mass) : 0;
+    s.local_error_velocity = mass > 0 ? std::sqrt(s.system.sum_over_ranks(e.velocity) / mass) : 0;
+  }
   s.scheme.correct(z, state, s.acceleration, dt);
   dynamics.share(state.position.data());  // for the post-step and the next step
   dynamics.set_constraint_reactions(s.system.reactions());
@@ -624,7 +695,8 @@ Statistics PetscNewton::statistics() const {
                       {"fresh_newton_retries", double(s.fresh_newton_retries)},
                       {"residual_evaluations", double(y.residual_passes)},
                       {"objective_evaluations", double(y.objective_passes)},
-                      {"reused_evaluations", double(y.cache_hits)}};
+                      {"reused_evaluations", double(y.cache_hits)},
+                      {"newton_error_test_stops", double(s.error_test_stops)}};
   s.refreshes.append_to(stats);
   return stats;
 }

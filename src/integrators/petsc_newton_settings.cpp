@@ -32,6 +32,10 @@ const std::vector<std::pair<std::string, S::Krylov>> kKrylov = {{"auto", S::Kryl
                                                                 {"none", S::Krylov::none},
                                                                 {"cg", S::Krylov::cg},
                                                                 {"gmres", S::Krylov::gmres}};
+const std::vector<std::pair<std::string, S::NewtonTest>> kNewtonTests = {
+    {"auto", S::NewtonTest::automatic},
+    {"residual", S::NewtonTest::residual},
+    {"local_error", S::NewtonTest::local_error}};
 
 // A whole number from 1 to 1e6 (the refresh limits).
 int refresh_limit(const OptionReader& r, const std::string& key, int fallback) {
@@ -60,6 +64,7 @@ const std::vector<std::string>& petsc_newton_keys() {
                                                 "max_step_halvings",
                                                 "preconditioner",
                                                 "krylov",
+                                                "newton_test",
                                                 "refresh_contraction",
                                                 "refresh_iterations",
                                                 "reuse_factor",
@@ -76,6 +81,13 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
   s->preconditioner = r.choice("preconditioner", s->preconditioner, kPreconditioners);
   s->krylov = r.choice("krylov", s->krylov, kKrylov);
   s->factor_precision = read_factor_precision(r, s->factor_precision);
+  s->newton_test = r.choice("newton_test", s->newton_test, kNewtonTests);
+  if (s->newton_test == S::NewtonTest::local_error && s->scheme != S::Scheme::esdirk4 &&
+      s->scheme != S::Scheme::sdirk4)
+    r.fail("newton_test",
+           fmt::format("'local_error' needs a scheme with an embedded error estimate (esdirk4 "
+                       "or sdirk4), not {}",
+                       scheme_name(s->scheme)));
   if (s->tangent == S::Tangent::majoriser && s->preconditioner == S::Preconditioner::tangent)
     r.fail("preconditioner",
            "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "

@@ -38,6 +38,12 @@ struct PetscNewtonSettings final : IntegratorOptions {
   double refresh_contraction = 0.25;  // refresh when |r_k+1| / |r_k| exceeds this
   int refresh_iterations = 6;         // ... or a step's Newton iterations since the refresh do
   int refresh_krylov = 40;            // ... or one linear solve needs more Krylov iterations
+  // When a Newton solve stops: PETSc's residual tests (-snes_rtol, ...), or also once the
+  // estimated Newton error is under 1% of the step's local error estimate (schemes with
+  // embedded weights); auto: local_error for esdirk4 unless petsc_options set -snes_rtol,
+  // -snes_atol or -snes_stol.
+  enum class NewtonTest { automatic, residual, local_error };
+  NewtonTest newton_test = NewtonTest::automatic;
 
   int load_increments() const override { return scheme == Scheme::static_equilibrium ? steps : 0; }
 };

@@ -15,7 +15,8 @@ SdirkTableau alexander() {
   return {"sdirk3", 3, 3, g, {g, 0, 0, t - g, g, 0, b1, b2, g}, {b1, b2, g}, true};
 }
 
-// Hairer & Wanner, Table IV.6.5 (γ = 1/4, c = 1/4, 3/4, 11/20, 1/2, 1).
+// Hairer & Wanner, Table IV.6.5 (γ = 1/4, c = 1/4, 3/4, 11/20, 1/2, 1), with its embedded
+// third-order weights.
 SdirkTableau hairer_wanner() {
   return {"sdirk4",
           5,
@@ -37,12 +38,13 @@ SdirkTableau hairer_wanner() {
            125. / 16,   -85. / 12,
            1. / 4},
           {25. / 24, -49. / 48, 125. / 16, -85. / 12, 1. / 4},
-          true};
+          true,
+          {59. / 48, -17. / 96, 225. / 32, -85. / 12, 0}};
 }
 
 // Kennedy & Carpenter, Appl. Numer. Math. 44 (2003), ARK4(3)6L[2]SA, its implicit tableau
 // (ESDIRK): an explicit first stage, then five with γ = 1/4 (c = 1/2, 83/250, 31/50, 17/20, 1),
-// stiffly accurate, L-stable, stage order 2.
+// stiffly accurate, L-stable, stage order 2; with its embedded third-order weights b̂.
 SdirkTableau kennedy_carpenter() {
   // clang-format off
   const std::vector<double> a = {
@@ -53,7 +55,10 @@ SdirkTableau kennedy_carpenter() {
       15267082809. / 155376265600, -71443401. / 120774400, 730878875. / 902184768, 2285395. / 8070912, 1. / 4,        0,
       82889. / 524892,             0,                      15625. / 83664,         69875. / 102672,    -2260. / 8211, 1. / 4};
   // clang-format on
-  return {"esdirk4", 6, 4, 0.25, a, std::vector<double>(a.end() - 6, a.end()), true};
+  const std::vector<double> b_embedded = {4586570599. / 29645900160, 0,
+                                          178811875. / 945068544,    814220225. / 1159782912,
+                                          -3700637. / 11593932,      61727. / 225920};
+  return {"esdirk4", 6, 4, 0.25, a, std::vector<double>(a.end() - 6, a.end()), true, b_embedded};
 }
 
 }  // namespace

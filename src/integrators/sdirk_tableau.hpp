@@ -15,6 +15,9 @@ struct SdirkTableau {
   std::vector<double> a;   // stages × stages, row major, lower triangular
   std::vector<double> b;   // weights
   bool stiffly_accurate;   // b is the last row of a: y_{n+1} is the last stage
+  // Weights of an embedded scheme one order lower (empty if the tableau has none): h Σ (b_i −
+  // b̂_i) k_i estimates the step's local error.
+  std::vector<double> b_embedded = {};
   bool explicit_stage(int i) const { return a[i * stages + i] == 0; }
   double c(int i) const {  // Σ_j a_ij
     double s = 0;
