@@ -1,24 +1,30 @@
-// petsc_newton's default Newton tolerance (-snes_rtol 1e-6) against the SDIRK schemes' own error
-// at the large steps they are for: what the Newton iteration leaves must be far below what the
-// scheme commits. On this free, soft vibration looser tolerances are not (SDIRK4 at 20× the
-// explicit estimate, measured: -snes_rtol 1e-1 leaves 1.2× the scheme's error, 1e-2 2.2×,
-// 1e-3 0.22×, 1e-6 3.5e-4×; docs/integrators.md), so a default loosened for speed fails here.
-// ESDIRK4 has SDIRK4's stability function from weights of at most 0.69 in size (SDIRK4's reach
-// 7.8): its stages' Newton errors reach the step far less amplified.
+// petsc_newton's default Newton tests against the SDIRK schemes' own error at the large steps
+// they are for: what the Newton iteration leaves must be far below what the scheme commits.
+// sdirk3 and sdirk4 stop on the residual (-snes_rtol 1e-6); on this free, soft vibration looser
+// residual tolerances are not enough (SDIRK4 at 20× the explicit estimate, measured: -snes_rtol
+// 1e-1 leaves 1.2× the scheme's error, 1e-2 2.2×, 1e-3 0.22×, 1e-6 3.5e-4×; docs/integrators.md).
+// esdirk4 stops once the estimated Newton error is under 1% of the step's local error estimate
+// (newton_test: auto = local_error). ESDIRK4 has SDIRK4's stability function from weights of at
+// most 0.69 in size (SDIRK4's reach 7.8): its stages' Newton errors reach the step far less
+// amplified, which is what lets that test stop early.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "integrators/petsc_newton.hpp"
+#include "support/integrator_statistics.hpp"
 #include "support/vibration.hpp"
 
 namespace fissure {
 namespace {
 
-IntegratorSettings sdirk(const std::string& scheme, const std::string& options) {
+IntegratorSettings sdirk(
+    const std::string& scheme, const std::string& options,
+    PetscNewtonSettings::NewtonTest test = PetscNewtonSettings::NewtonTest::automatic) {
   PetscNewtonSettings s;
   s.scheme = scheme_named(scheme);
   s.petsc_options = options;
+  s.newton_test = test;
   return integrator_settings("petsc_newton", s);
 }
 
@@ -27,8 +33,10 @@ class SdirkNewtonDefault : public ::testing::TestWithParam<const char*> {};
 // 40 steps at 20× the explicit estimate (about 1/10 of the block's first period). The reference
 // is the same scheme at 1/8 of the step, solved to round-off, so |solved − reference| is the
 // scheme's own error at the large step (8^-3 or 8^-4 of it remains in the reference). The bound,
-// a tenth of that error, leaves the default's measured 3.5e-4× (SDIRK3: 2.5e-4×) more than two
-// orders of margin, and fails SDIRK4 at each of 1e-1, 1e-2 and 1e-3 (measured above).
+// a tenth of that error, leaves the residual test's measured 2.5e-4× (SDIRK4; SDIRK3 1.7e-3×)
+// more than two orders of margin and ESDIRK4's error test's 0.020× five times, and fails SDIRK4
+// at each of -snes_rtol 1e-1, 1e-2 and 1e-3 and ESDIRK4's error test at a fraction of 1 instead
+// of 1% (measured 32×).
 TEST_P(SdirkNewtonDefault, LeavesASolutionErrorFarBelowTheSchemesOwn) {
   auto v = test::make_vibration();
   const double dt = 20 * v->stable_dt, end = 40 * dt;
@@ -49,12 +57,11 @@ TEST_P(SdirkNewtonDefault, LeavesASolutionErrorFarBelowTheSchemesOwn) {
 INSTANTIATE_TEST_SUITE_P(Schemes, SdirkNewtonDefault,
                          ::testing::Values("sdirk3", "sdirk4", "esdirk4"));
 
-// The same block at -snes_rtol 1e-2, where both schemes take two Newton iterations in almost every
-// stage: ESDIRK4's solution is as close to the fully solved one as its step allows (measured
-// 0.085× its own error; SDIRK4 leaves 2.2× its own), so its Newton error is under a fifth of
-// SDIRK4's (measured 0.039). With SDIRK4's tableau in its place the ratio would be 1; with a wrong
-// explicit first stage its order (test_convergence_order.cpp) or error would show it.
-TEST(SdirkNewtonLoose, Esdirk4CarriesLessNewtonErrorThanSdirk4) {
+// The same error test on both schemes (newton_test: local_error): SDIRK4's stage errors reach
+// the step amplified by its weights (up to 125/16), ESDIRK4's by at most 0.82, so at the same
+// test SDIRK4 leaves far more Newton error (measured 1.9e-3 m against 7.5e-6 m, a ratio of
+// 4.0e-3). With SDIRK4's tableau in ESDIRK4's place the ratio would be 1.
+TEST(SdirkNewtonErrorTest, Esdirk4CarriesLessNewtonErrorThanSdirk4) {
   auto v = test::make_vibration();
   const double dt = 20 * v->stable_dt, end = 40 * dt;
   const std::string tight = "-snes_rtol 1e-12 -snes_atol 1e-14 -snes_stol 1e-16";
@@ -62,13 +69,39 @@ TEST(SdirkNewtonLoose, Esdirk4CarriesLessNewtonErrorThanSdirk4) {
   for (int k = 0; k < 2; ++k) {
     const char* scheme = k == 0 ? "sdirk4" : "esdirk4";
     auto exact = make_integrator(sdirk(scheme, tight), "test");
-    auto loose = make_integrator(sdirk(scheme, "-snes_rtol 1e-2"), "test");
-    error[k] = test::max_difference(test::integrate(*v, *loose, end, dt),
+    auto tested = make_integrator(sdirk(scheme, "", PetscNewtonSettings::NewtonTest::local_error),
+                                  "test");
+    error[k] = test::max_difference(test::integrate(*v, *tested, end, dt),
                                     test::integrate(*v, *exact, end, dt));
+    EXPECT_GT(test::statistic(*tested, "newton_error_test_stops"), 0) << scheme;
   }
-  std::printf("Newton error at -snes_rtol 1e-2: sdirk4 %.3e m, esdirk4 %.3e m (ratio %.3f)\n",
+  std::printf("Newton error with the error test: sdirk4 %.3e m, esdirk4 %.3e m (ratio %.2e)\n",
               error[0], error[1], error[1] / error[0]);
   EXPECT_LT(error[1], 0.2 * error[0]);
+}
+
+// ESDIRK4's default stops by the error test, in fewer Newton iterations than the residual test
+// takes (measured on this block: 471 against 995); residual tolerances in petsc_options turn
+// the automatic choice back to the residual test, and newton_test: residual turns it off.
+TEST(SdirkNewtonErrorTest, StopsEarlierByDefaultAndYieldsToResidualOptions) {
+  auto v = test::make_vibration();
+  const double dt = 20 * v->stable_dt, end = 40 * dt;
+  using T = PetscNewtonSettings::NewtonTest;
+  auto by_default = make_integrator(sdirk("esdirk4", ""), "test");
+  auto residual = make_integrator(sdirk("esdirk4", "", T::residual), "test");
+  auto with_rtol = make_integrator(sdirk("esdirk4", "-snes_rtol 1e-6"), "test");
+  test::integrate(*v, *by_default, end, dt);
+  test::integrate(*v, *residual, end, dt);
+  test::integrate(*v, *with_rtol, end, dt);
+  const double iterations = test::statistic(*by_default, "newton_iterations");
+  const double residual_iterations = test::statistic(*residual, "newton_iterations");
+  std::printf("Newton iterations: error test %.0f (%.0f stops), residual test %.0f\n", iterations,
+              test::statistic(*by_default, "newton_error_test_stops"), residual_iterations);
+  EXPECT_GT(test::statistic(*by_default, "newton_error_test_stops"), 0);
+  EXPECT_LT(iterations, residual_iterations);
+  EXPECT_EQ(test::statistic(*residual, "newton_error_test_stops"), 0);
+  EXPECT_EQ(test::statistic(*with_rtol, "newton_error_test_stops"), 0);
+  EXPECT_EQ(test::statistic(*with_rtol, "newton_iterations"), residual_iterations);
 }
 
 }  // namespace

@@ -96,12 +96,14 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_DOUBLE_EQ(petsc_newton(d).refresh_contraction, 0.25);
   EXPECT_EQ(petsc_newton(d).refresh_iterations, 6);
   EXPECT_EQ(petsc_newton(d).refresh_krylov, 40);
+  EXPECT_EQ(petsc_newton(d).newton_test, PetscNewtonSettings::NewtonTest::automatic);
   const Config c = parse_config(
       kMinimal, "scene.yaml",
       {"integrator.type=petsc_newton", "integrator.scheme=sdirk4", "integrator.preconditioner=gamg",
        "integrator.krylov=gmres", "integrator.reuse_factor=false",
        "integrator.refresh_contraction=0.5", "integrator.refresh_iterations=3",
-       "integrator.refresh_krylov=100", "integrator.factor_precision=double"});
+       "integrator.refresh_krylov=100", "integrator.factor_precision=double",
+       "integrator.newton_test=local_error"});
   EXPECT_EQ(petsc_newton(c).scheme, PetscNewtonSettings::Scheme::sdirk4);
   EXPECT_EQ(petsc_newton(c).preconditioner, P::gamg);
   EXPECT_EQ(petsc_newton(c).krylov, K::gmres);
@@ -110,6 +112,7 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_EQ(petsc_newton(c).refresh_iterations, 3);
   EXPECT_EQ(petsc_newton(c).refresh_krylov, 100);
   EXPECT_EQ(petsc_newton(c).factor_precision, FactorPrecision::full);
+  EXPECT_EQ(petsc_newton(c).newton_test, PetscNewtonSettings::NewtonTest::local_error);
   const Config nearest =
       parse_config(kMinimal, "scene.yaml",
                    {"integrator.type=petsc_newton", "integrator.preconditioner=nearest"});
@@ -120,7 +123,11 @@ TEST(Config, NewtonSolverKeys) {
       {"integrator.factor_precision=half", "integrator.factor_precision"},
       {"integrator.refresh_contraction=1", "integrator.refresh_contraction: must be in (0, 1)"},
       {"integrator.refresh_iterations=2.5", "integrator.refresh_iterations: must be a whole"},
-      {"integrator.scheme=sdirk5", "integrator.scheme"}};
+      {"integrator.scheme=sdirk5", "integrator.scheme"},
+      {"integrator.newton_test=energy", "integrator.newton_test"},
+      {"integrator.newton_test=local_error",
+       "integrator.newton_test: 'local_error' needs a scheme with an embedded error estimate "
+       "(esdirk4 or sdirk4), not backward_euler"}};
   for (const auto& [override, message] : bad) {
     const std::string e = error_of(kMinimal, {"integrator.type=petsc_newton", override});
     EXPECT_NE(e.find("scene.yaml: " + message), std::string::npos) << override << ": " << e;
