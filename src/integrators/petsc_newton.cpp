@@ -87,9 +87,9 @@ struct PetscNewton::Solver {
   // positions and, divided by γh, in velocities (the stage velocity is (Y_i − Ŷ_i)/(γh)).
   bool error_test = false;
   double local_error_position = 0, local_error_velocity = 0;  // mass-weighted RMS; 0: none yet
-  double gamma_h = 0;        // γh of the step being taken
-  double eta = -1;           // θ/(1 − θ) of the last contraction measured; < 0: none yet
-  double last_update = 0;    // |Δz_{k−1}|, mass-weighted RMS
+  double gamma_h = 0;                                         // γh of the step being taken
+  double eta = -1;            // θ/(1 − θ) of the last contraction measured; < 0: none yet
+  double last_update = 0;     // |Δz_{k−1}|, mass-weighted RMS
   long error_test_stops = 0;  // Newton solves the error test stopped
 };
 
@@ -290,8 +290,8 @@ void newton_error_test(Solver& s, SNES snes, PetscInt it, SNESConvergedReason* r
   }
   s.last_update = size;
   if (*reason != SNES_CONVERGED_ITERATING || s.eta < 0 || s.local_error_position <= 0) return;
-  const double tolerance = kNewtonErrorFraction *
-                           std::min(s.local_error_position, s.gamma_h * s.local_error_velocity);
+  const double tolerance =
+      kNewtonErrorFraction * std::min(s.local_error_position, s.gamma_h * s.local_error_velocity);
   if (s.eta * size <= tolerance) {
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
     ++s.error_test_stops;
@@ -650,8 +650,8 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     s.scheme.finish_stage(z, dt);
   }
   if (s.error_test) {
-    const ImplicitScheme::ErrorSums e = s.scheme.local_error(
-        dt, s.system.mass(), s.system.fixed(), first, end);
+    const ImplicitScheme::ErrorSums e =
+        s.scheme.local_error(dt, s.system.mass(), s.system.fixed(), first, end);
     const double mass = s.system.sum_over_ranks(e.mass);
     s.local_error_position = mass > 0 ? std::sqrt(s.system.sum_over_ranks(e.position) / mass) : 0;
     s.local_error_velocity = mass > 0 ? std::sqrt(s.system.sum_over_ranks(e.velocity) / mass) : 0;

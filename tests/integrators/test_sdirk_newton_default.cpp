@@ -69,8 +69,8 @@ TEST(SdirkNewtonErrorTest, Esdirk4CarriesLessNewtonErrorThanSdirk4) {
   for (int k = 0; k < 2; ++k) {
     const char* scheme = k == 0 ? "sdirk4" : "esdirk4";
     auto exact = make_integrator(sdirk(scheme, tight), "test");
-    auto tested = make_integrator(sdirk(scheme, "", PetscNewtonSettings::NewtonTest::local_error),
-                                  "test");
+    auto tested =
+        make_integrator(sdirk(scheme, "", PetscNewtonSettings::NewtonTest::local_error), "test");
     error[k] = test::max_difference(test::integrate(*v, *tested, end, dt),
                                     test::integrate(*v, *exact, end, dt));
     EXPECT_GT(test::statistic(*tested, "newton_error_test_stops"), 0) << scheme;

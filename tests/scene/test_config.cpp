@@ -97,13 +97,13 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_EQ(petsc_newton(d).refresh_iterations, 6);
   EXPECT_EQ(petsc_newton(d).refresh_krylov, 40);
   EXPECT_EQ(petsc_newton(d).newton_test, PetscNewtonSettings::NewtonTest::automatic);
-  const Config c = parse_config(
-      kMinimal, "scene.yaml",
-      {"integrator.type=petsc_newton", "integrator.scheme=sdirk4", "integrator.preconditioner=gamg",
-       "integrator.krylov=gmres", "integrator.reuse_factor=false",
-       "integrator.refresh_contraction=0.5", "integrator.refresh_iterations=3",
-       "integrator.refresh_krylov=100", "integrator.factor_precision=double",
-       "integrator.newton_test=local_error"});
+  const Config c =
+      parse_config(kMinimal, "scene.yaml",
+                   {"integrator.type=petsc_newton", "integrator.scheme=sdirk4",
+                    "integrator.preconditioner=gamg", "integrator.krylov=gmres",
+                    "integrator.reuse_factor=false", "integrator.refresh_contraction=0.5",
+                    "integrator.refresh_iterations=3", "integrator.refresh_krylov=100",
+                    "integrator.factor_precision=double", "integrator.newton_test=local_error"});
   EXPECT_EQ(petsc_newton(c).scheme, PetscNewtonSettings::Scheme::sdirk4);
   EXPECT_EQ(petsc_newton(c).preconditioner, P::gamg);
   EXPECT_EQ(petsc_newton(c).krylov, K::gmres);
