@@ -4,6 +4,20 @@
 
 namespace fissure {
 
+const SdirkTableau* sdirk_tableau(ImplicitScheme::Scheme scheme) {
+  using S = ImplicitScheme::Scheme;
+  switch (scheme) {
+    case S::sdirk3:
+      return &sdirk3_tableau();
+    case S::sdirk4:
+      return &sdirk4_tableau();
+    case S::esdirk4:
+      return &esdirk4_tableau();
+    default:
+      return nullptr;
+  }
+}
+
 ImplicitScheme::ImplicitScheme(Scheme scheme, double rho_infinity) {
   switch (scheme) {
     case Scheme::backward_euler:
@@ -16,9 +30,7 @@ ImplicitScheme::ImplicitScheme(Scheme scheme, double rho_infinity) {
     case Scheme::sdirk4:
     case Scheme::esdirk4:
       kind_ = Kind::sdirk;
-      tableau_ = scheme == Scheme::sdirk3   ? &sdirk3_tableau()
-                 : scheme == Scheme::sdirk4 ? &sdirk4_tableau()
-                                            : &esdirk4_tableau();
+      tableau_ = sdirk_tableau(scheme);
       return;
     case Scheme::alpha: {
       const double r = rho_infinity;  // Chung & Hulbert (1993), Eqs 25 and 17

@@ -13,6 +13,9 @@
 
 namespace fissure {
 
+// The tableau of an SDIRK scheme; nullptr for the others.
+const SdirkTableau* sdirk_tableau(PetscNewtonSettings::Scheme scheme);
+
 class ImplicitScheme {
  public:
   using Scheme = PetscNewtonSettings::Scheme;
@@ -55,9 +58,8 @@ class ImplicitScheme {
   bool is_static() const { return kind_ == Kind::static_equilibrium; }
   // γ of an SDIRK scheme's stages, else 0.
   double gamma() const { return tableau_ ? tableau_->gamma : 0; }
-  // True for an SDIRK scheme whose tableau has embedded weights (local_error below).
-  bool has_error_estimate() const { return tableau_ && !tableau_->b_embedded.empty(); }
-  // The step just solved's local error estimate from the embedded weights, d = h Σ (b_i − b̂_i)
+  // The step just solved's local error estimate from the embedded weights (a scheme that has
+  // them: newton_test_refusal in petsc_newton_settings.hpp), d = h Σ (b_i − b̂_i)
   // (V_i, V'_i), as sums over the free unknowns [first, end) of m d_y², m d_v² and m.
   struct ErrorSums {
     double position = 0, velocity = 0, mass = 0;

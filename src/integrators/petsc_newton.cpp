@@ -444,11 +444,9 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
     }
     s.error_test = !residual_set;
   }
-  if (s.error_test && !s.scheme.has_error_estimate())
-    throw InputError(file, "integrator.newton_test",
-                     fmt::format("'local_error' needs a scheme with an embedded error estimate "
-                                 "(esdirk4 or sdirk4), not {}",
-                                 scheme_name(settings.scheme)));
+  // settings made in code are not parsed
+  if (const std::string refusal = newton_test_refusal(settings); !refusal.empty())
+    throw InputError(file, "integrator.newton_test", refusal);
 }
 
 // Near the solution the potential's decrease along the Newton step, at most |r|·|Δz|, falls

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/implicit_scheme.hpp"
+
 namespace fissure {
 
 namespace {
@@ -82,12 +84,8 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
   s->krylov = r.choice("krylov", s->krylov, kKrylov);
   s->factor_precision = read_factor_precision(r, s->factor_precision);
   s->newton_test = r.choice("newton_test", s->newton_test, kNewtonTests);
-  if (s->newton_test == S::NewtonTest::local_error && s->scheme != S::Scheme::esdirk4 &&
-      s->scheme != S::Scheme::sdirk4)
-    r.fail("newton_test",
-           fmt::format("'local_error' needs a scheme with an embedded error estimate (esdirk4 "
-                       "or sdirk4), not {}",
-                       scheme_name(s->scheme)));
+  if (const std::string refusal = newton_test_refusal(*s); !refusal.empty())
+    r.fail("newton_test", refusal);
   if (s->tangent == S::Tangent::majoriser && s->preconditioner == S::Preconditioner::tangent)
     r.fail("preconditioner",
            "'tangent' factors the exact tangent; with tangent: majoriser use preconditioner: "
@@ -109,6 +107,15 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
   }
   s->petsc_options = r.string("petsc_options", s->petsc_options);
   return s;
+}
+
+std::string newton_test_refusal(const PetscNewtonSettings& settings) {
+  if (settings.newton_test != S::NewtonTest::local_error) return {};
+  const SdirkTableau* tableau = sdirk_tableau(settings.scheme);
+  if (tableau && !tableau->b_embedded.empty()) return {};
+  return fmt::format(
+      "'local_error' needs a scheme with an embedded error estimate (esdirk4 or sdirk4), not {}",
+      scheme_name(settings.scheme));
 }
 
 std::string scheme_name(S::Scheme scheme) { return choice_name(scheme, kSchemes); }

@@ -55,6 +55,10 @@ FactorPrecision read_factor_precision(const OptionReader& r, FactorPrecision fal
 const std::vector<std::string>& petsc_newton_keys();
 std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const OptionReader& r);
 
+// Why `newton_test` cannot be used with `scheme` (local_error needs a tableau with embedded
+// weights), or empty.
+std::string newton_test_refusal(const PetscNewtonSettings& settings);
+
 // As the config spells them.
 std::string scheme_name(PetscNewtonSettings::Scheme scheme);
 std::string tangent_name(PetscNewtonSettings::Tangent tangent);
