@@ -4,20 +4,6 @@
 
 namespace fissure {
 
-const SdirkTableau* sdirk_tableau(ImplicitScheme::Scheme scheme) {
-  using S = ImplicitScheme::Scheme;
-  switch (scheme) {
-    case S::sdirk3:
-      return &sdirk3_tableau();
-    case S::sdirk4:
-      return &sdirk4_tableau();
-    case S::esdirk4:
-      return &esdirk4_tableau();
-    default:
-      return nullptr;
-  }
-}
-
 ImplicitScheme::ImplicitScheme(Scheme scheme, double rho_infinity) {
   switch (scheme) {
     case Scheme::backward_euler:

@@ -13,9 +13,6 @@
 
 namespace fissure {
 
-// The tableau of an SDIRK scheme; nullptr for the others.
-const SdirkTableau* sdirk_tableau(PetscNewtonSettings::Scheme scheme);
-
 class ImplicitScheme {
  public:
   using Scheme = PetscNewtonSettings::Scheme;

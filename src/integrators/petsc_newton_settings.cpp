@@ -5,8 +5,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "integrators/implicit_scheme.hpp"
-
 namespace fissure {
 
 namespace {
@@ -107,6 +105,19 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
   }
   s->petsc_options = r.string("petsc_options", s->petsc_options);
   return s;
+}
+
+const SdirkTableau* sdirk_tableau(S::Scheme scheme) {
+  switch (scheme) {
+    case S::Scheme::sdirk3:
+      return &sdirk3_tableau();
+    case S::Scheme::sdirk4:
+      return &sdirk4_tableau();
+    case S::Scheme::esdirk4:
+      return &esdirk4_tableau();
+    default:
+      return nullptr;
+  }
 }
 
 std::string newton_test_refusal(const PetscNewtonSettings& settings) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/sdirk_tableau.hpp"
 #include "linear/factor_precision.hpp"
 #include "scene/option_parsers.hpp"
 
@@ -58,6 +59,9 @@ std::shared_ptr<const IntegratorOptions> read_petsc_newton_settings(const Option
 // Why `newton_test` cannot be used with `scheme` (local_error needs a tableau with embedded
 // weights), or empty.
 std::string newton_test_refusal(const PetscNewtonSettings& settings);
+
+// The tableau of an SDIRK scheme; nullptr for the others.
+const SdirkTableau* sdirk_tableau(PetscNewtonSettings::Scheme scheme);
 
 // As the config spells them.
 std::string scheme_name(PetscNewtonSettings::Scheme scheme);
