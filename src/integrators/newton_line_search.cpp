@@ -25,6 +25,15 @@ PetscErrorCode potential_line_search(SNESLineSearch search, void* context) {
   PetscCall(SNESLineSearchGetSNES(search, &snes));
   PetscCall(SNESLineSearchGetVecs(search, &x, &f, &y, &w, &g));
   PetscCall(SNESLineSearchGetNorms(search, &xnorm, &fnorm, &ynorm));
+  if (c->accept_unevaluated && c->accept_unevaluated(y)) {
+    ++c->unevaluated;
+    PetscCall(VecAXPY(x, -1, y));
+    PetscCall(VecNorm(x, NORM_2, &xnorm));
+    PetscCall(VecNorm(y, NORM_2, &ynorm));
+    PetscCall(SNESLineSearchSetLambda(search, 1));
+    PetscCall(SNESLineSearchSetNorms(search, xnorm, fnorm, ynorm));
+    return 0;
+  }
   PetscReal e0;
   PetscCall(SNESComputeObjective(snes, x, &e0));
   // The step is x − λy; its slope along E is −∇Eᵀy (negative for a positive definite factor).

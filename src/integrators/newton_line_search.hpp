@@ -4,8 +4,11 @@
 // ∇E together and nothing more; else backtracking by safeguarded quadratic fits. Near the
 // solution E's decrease falls below the round-off of E itself (extensions of stiff materials are
 // tiny differences of lengths), where no test on E can decide: a step that keeps E within that
-// round-off and lowers |∇E| is then taken.
+// round-off and lowers |∇E| is then taken. A step the Newton test has already accepted from its
+// size alone (`accept_unevaluated`) is taken without evaluating anything.
 #include <petscsnes.h>
+
+#include <functional>
 
 #include "integrators/newton_system.hpp"
 
@@ -14,6 +17,10 @@ namespace fissure {
 struct PotentialLineSearch {
   NewtonSystem* system = nullptr;
   long cuts = 0;  // steps shorter than the full step
+  // Whether the full step along this direction ends the Newton solve whatever E and ∇E are
+  // there; if so it is taken unevaluated (the residual is left at the last point evaluated).
+  std::function<bool(Vec direction)> accept_unevaluated;
+  long unevaluated = 0;  // steps so taken
 };
 
 // The SNESLineSearchUserFunc; `context` is a PotentialLineSearch.

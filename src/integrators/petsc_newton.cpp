@@ -92,6 +92,9 @@ struct PetscNewton::Solver {
   double last_update = 0;     // |Δz_{k−1}|, mass-weighted RMS
   long error_test_stops = 0;  // Newton solves the error test stopped
   int stops_with_old_contraction = 0;  // ... after one iteration, since η was last measured
+  bool evaluate_every_update = false;  // PetscNewtonSettings::evaluate_every_update
+  bool last_stage = true;              // the stage being solved is the step's last
+  bool step_unevaluated = false;  // the line search took the update without evaluating after it
 };
 
 namespace {
@@ -274,38 +277,71 @@ constexpr int kStopsWithOldContraction = 20;
 // last solve that measured one (their max(η_old, ε)^0.8, which grows η from solve to solve, made
 // the glass bar of docs/accuracy.md take 1.8 iterations per stage instead of 1.0). Collective
 // over the ranks.
+// |v| over the unknowns not held, mass-weighted RMS; collective over the ranks.
+double mass_weighted_size(const Solver& s, Vec v) {
+  const PetscScalar* values;
+  petsc_check(VecGetArrayRead(v, &values), "VecGetArrayRead");
+  const auto& m = s.system.mass();
+  const auto& fixed = s.system.fixed();
+  const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
+  double sum = 0, mass = 0;
+  for (std::size_t k = first; k < end; ++k)
+    if (!fixed[k]) sum += m[k] * values[k - first] * values[k - first], mass += m[k];
+  petsc_check(VecRestoreArrayRead(v, &values), "VecRestoreArrayRead");
+  return std::sqrt(s.system.sum_over_ranks(sum) / s.system.sum_over_ranks(mass));
+}
+
+// η after iteration `it` whose update has size `size`: θ/(1 − θ) from this update and the one
+// before; after the first, η of the last solve that measured one. Negative: none or θ ≥ 1.
+double eta_after(const Solver& s, PetscInt it, double size) {
+  if (it < 2 || s.last_update <= 0) return s.eta;
+  const double theta = size / s.last_update;
+  return theta < 1 ? theta / (1 - theta) : -1;
+}
+
+// Whether the error test stops after iteration `it` whose update has size `size`.
+bool error_test_stops(const Solver& s, PetscInt it, double size) {
+  const double eta = eta_after(s, it, size);
+  if (eta < 0 || s.local_error_position <= 0) return false;
+  if (it == 1 && s.stops_with_old_contraction >= kStopsWithOldContraction) return false;
+  const double tolerance =
+      kNewtonErrorFraction * std::min(s.local_error_position, s.gamma_h * s.local_error_velocity);
+  return eta * size <= tolerance;
+}
+
 void newton_error_test(Solver& s, SNES snes, PetscInt it, SNESConvergedReason* reason) {
   if (it == 0) {
     s.last_update = 0;
     return;
   }
   Vec dz;
-  const PetscScalar* update;
   petsc_check(SNESGetSolutionUpdate(snes, &dz), "SNESGetSolutionUpdate");
-  petsc_check(VecGetArrayRead(dz, &update), "VecGetArrayRead");
-  const auto& m = s.system.mass();
-  const auto& fixed = s.system.fixed();
-  const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
-  double sum = 0, mass = 0;
-  for (std::size_t k = first; k < end; ++k)
-    if (!fixed[k]) sum += m[k] * update[k - first] * update[k - first], mass += m[k];
-  petsc_check(VecRestoreArrayRead(dz, &update), "VecRestoreArrayRead");
-  const double size = std::sqrt(s.system.sum_over_ranks(sum) / s.system.sum_over_ranks(mass));
+  const double size = mass_weighted_size(s, dz);
+  // a step the line search took unevaluated was accepted by this test already
+  const bool unevaluated = std::exchange(s.step_unevaluated, false);
+  const bool stops = unevaluated || error_test_stops(s, it, size);
   if (it >= 2 && s.last_update > 0) {
-    const double theta = size / s.last_update;
-    s.eta = theta < 1 ? theta / (1 - theta) : -1;
+    s.eta = eta_after(s, it, size);
     s.stops_with_old_contraction = 0;
   }
   s.last_update = size;
-  if (*reason != SNES_CONVERGED_ITERATING || s.eta < 0 || s.local_error_position <= 0) return;
-  if (it == 1 && s.stops_with_old_contraction >= kStopsWithOldContraction) return;
-  const double tolerance =
-      kNewtonErrorFraction * std::min(s.local_error_position, s.gamma_h * s.local_error_velocity);
-  if (s.eta * size <= tolerance) {
-    *reason = SNES_CONVERGED_SNORM_RELATIVE;
-    ++s.error_test_stops;
-    if (it == 1) ++s.stops_with_old_contraction;
-  }
+  if (!unevaluated && (*reason != SNES_CONVERGED_ITERATING || !stops)) return;
+  *reason = SNES_CONVERGED_SNORM_RELATIVE;
+  ++s.error_test_stops;
+  if (it == 1) ++s.stops_with_old_contraction;
+}
+
+// An update in a stage that is not the step's last is taken without evaluating E and ∇E after
+// it when the error test will stop there (the test reads only the updates' sizes): nothing
+// reads them, as the stage derivatives follow from the stage's solution alone
+// (ImplicitScheme::finish_stage). The step's last stage is evaluated: the constraint reactions
+// are the forces at its solution.
+bool accept_unevaluated(Solver& s, Vec direction) {
+  if (!s.error_test || s.last_stage || s.evaluate_every_update) return false;
+  PetscInt done = 0;  // the update being taken is iteration done + 1
+  petsc_check(SNESGetIterationNumber(s.snes, &done), "SNESGetIterationNumber");
+  s.step_unevaluated = error_test_stops(s, done + 1, mass_weighted_size(s, direction));
+  return s.step_unevaluated;
 }
 
 // PETSc's tests (-snes_rtol, -snes_atol, ... as the user set them), convergence at the
@@ -389,6 +425,10 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   petsc_check(PetscObjectSetOptions(reinterpret_cast<PetscObject>(search), s.options), "options");
   petsc_check(SNESLineSearchSetType(search, SNESLINESEARCHSHELL), "SNESLineSearchSetType");
   s.line_search.system = &s.system;
+  s.line_search.accept_unevaluated = [&s](Vec direction) {
+    bool accept = false;
+    return guarded(&s, [&] { accept = accept_unevaluated(s, direction); }) == 0 && accept;
+  };
   petsc_check(SNESLineSearchShellSetUserFunc(search, potential_line_search, &s.line_search),
               "SNESLineSearchShellSetUserFunc");
   PC pc;
@@ -434,6 +474,7 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   s.linear_rtol_fixed = set;
   using T = PetscNewtonSettings::NewtonTest;
   s.error_test = settings.newton_test == T::local_error;
+  s.evaluate_every_update = settings.evaluate_every_update;
   if (settings.newton_test == T::automatic &&
       settings.scheme == PetscNewtonSettings::Scheme::esdirk4) {
     // a user who sets the residual's tolerances asks for the residual test
@@ -613,6 +654,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   for (int stage = 0; stage < s.scheme.stages(); ++stage) {
     s.scheme.predict(state, s.acceleration, dynamics.damping(), dt, stage);
     if (s.scheme.explicit_stage()) continue;
+    s.last_stage = stage == s.scheme.stages() - 1;
     z = s.system.begin_step(s.scheme, state, dt, load);
     s.floor = residual_floor(s, z);
     // auto: the exact tangent converges quadratically where A M + K is positive definite; where
@@ -709,7 +751,8 @@ Statistics PetscNewton::statistics() const {
                       {"residual_evaluations", double(y.residual_passes)},
                       {"objective_evaluations", double(y.objective_passes)},
                       {"reused_evaluations", double(y.cache_hits)},
-                      {"newton_error_test_stops", double(s.error_test_stops)}};
+                      {"newton_error_test_stops", double(s.error_test_stops)},
+                      {"unevaluated_updates", double(s.line_search.unevaluated)}};
   s.refreshes.append_to(stats);
   return stats;
 }

@@ -45,6 +45,9 @@ struct PetscNewtonSettings final : IntegratorOptions {
   // -snes_atol or -snes_stol.
   enum class NewtonTest { automatic, residual, local_error };
   NewtonTest newton_test = NewtonTest::automatic;
+  // Settings made in code only (tests): evaluate E and ∇E after every Newton update, also after
+  // one the error test accepts before the step's last stage (nothing reads them there).
+  bool evaluate_every_update = false;
 
   int load_increments() const override { return scheme == Scheme::static_equilibrium ? steps : 0; }
 };
