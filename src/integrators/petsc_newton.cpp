@@ -272,11 +272,6 @@ constexpr double kNewtonErrorFraction = 0.01;
 // next takes a second iteration, which measures θ again (a twentieth more iterations at most).
 constexpr int kStopsWithOldContraction = 20;
 
-// Hairer and Wanner's test for simplified Newton (Solving ODEs II, IV.8): after iteration k the
-// error is about η|Δz_k| with η = θ/(1 − θ), θ = |Δz_k|/|Δz_{k−1}|; after the first, η of the
-// last solve that measured one (their max(η_old, ε)^0.8, which grows η from solve to solve, made
-// the glass bar of docs/accuracy.md take 1.8 iterations per stage instead of 1.0). Collective
-// over the ranks.
 // |v| over the unknowns not held, mass-weighted RMS; collective over the ranks.
 double mass_weighted_size(const Solver& s, Vec v) {
   const PetscScalar* values;
@@ -309,9 +304,15 @@ bool error_test_stops(const Solver& s, PetscInt it, double size) {
   return eta * size <= tolerance;
 }
 
+// Hairer and Wanner's test for simplified Newton (Solving ODEs II, IV.8): after iteration k the
+// error is about η|Δz_k| with η = θ/(1 − θ), θ = |Δz_k|/|Δz_{k−1}|; after the first, η of the
+// last solve that measured one (their max(η_old, ε)^0.8, which grows η from solve to solve, made
+// the glass bar of docs/accuracy.md take 1.8 iterations per stage instead of 1.0). Collective
+// over the ranks.
 void newton_error_test(Solver& s, SNES snes, PetscInt it, SNESConvergedReason* reason) {
   if (it == 0) {
     s.last_update = 0;
+    s.step_unevaluated = false;
     return;
   }
   Vec dz;
