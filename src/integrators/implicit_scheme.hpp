@@ -49,6 +49,8 @@ class ImplicitScheme {
   bool later_stage() const {
     return kind_ == Kind::sdirk && stage_ > (tableau_->explicit_stage(0) ? 1 : 0);
   }
+  // True while the step's last stage (its only one, for the schemes that are not SDIRK) is.
+  bool last_stage() const { return stage_ == stages() - 1; }
   // True if the stage last predicted is explicit (an ESDIRK's first): predict() recorded it,
   // and it has no minimisation and no finish_stage().
   bool explicit_stage() const { return tableau_ && tableau_->explicit_stage(stage_); }

@@ -93,7 +93,6 @@ struct PetscNewton::Solver {
   long error_test_stops = 0;  // Newton solves the error test stopped
   int stops_with_old_contraction = 0;  // ... after one iteration, since η was last measured
   bool evaluate_every_update = false;  // PetscNewtonSettings::evaluate_every_update
-  bool last_stage = true;              // the stage being solved is the step's last
   bool step_unevaluated = false;  // the line search took the update without evaluating after it
 };
 
@@ -338,7 +337,7 @@ void newton_error_test(Solver& s, SNES snes, PetscInt it, SNESConvergedReason* r
 // (ImplicitScheme::finish_stage). The step's last stage is evaluated: the constraint reactions
 // are the forces at its solution.
 bool accept_unevaluated(Solver& s, Vec direction) {
-  if (!s.error_test || s.last_stage || s.evaluate_every_update) return false;
+  if (!s.error_test || s.scheme.last_stage() || s.evaluate_every_update) return false;
   PetscInt done = 0;  // the update being taken is iteration done + 1
   petsc_check(SNESGetIterationNumber(s.snes, &done), "SNESGetIterationNumber");
   s.step_unevaluated = error_test_stops(s, done + 1, mass_weighted_size(s, direction));
@@ -655,7 +654,6 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   for (int stage = 0; stage < s.scheme.stages(); ++stage) {
     s.scheme.predict(state, s.acceleration, dynamics.damping(), dt, stage);
     if (s.scheme.explicit_stage()) continue;
-    s.last_stage = stage == s.scheme.stages() - 1;
     z = s.system.begin_step(s.scheme, state, dt, load);
     s.floor = residual_floor(s, z);
     // auto: the exact tangent converges quadratically where A M + K is positive definite; where
