@@ -89,7 +89,8 @@ int main(int argc, char** argv) {
              cholmod_factorize, 1e3 * cholmod_solve, 1.0, "-", "0");
 
   const int all = omp_get_max_threads();
-  for (auto precision : {fissure::FactorPrecision::full, fissure::FactorPrecision::single}) {
+  for (auto precision : {fissure::FactorPrecision::full, fissure::FactorPrecision::single,
+                         fissure::FactorPrecision::half}) {
     for (int threads : {1, all}) {
       omp_set_num_threads(threads);
       fissure::SupernodalCholesky factor_of_a(precision);
@@ -102,10 +103,9 @@ int main(int argc, char** argv) {
       start = Clock::now();
       for (int k = 0; k < solves; ++k) factor_of_a.solve(b.data(), x.data());
       const double solve = seconds_since(start) / solves;
-      const bool single = precision == fissure::FactorPrecision::single;
       fmt::print("{:<10} {:>8} {:>14.3f} {:>10.3f} {:>12.2f} {:>12.1f} {:>10.2e}\n",
-                 single ? "single" : "double", factor_of_a.threads(), factorize, 1e3 * solve,
-                 solve / cholmod_solve, factor_of_a.solve_bytes() / 2 / 1e6,
+                 fissure::factor_precision_name(factor_of_a.precision()), factor_of_a.threads(),
+                 factorize, 1e3 * solve, solve / cholmod_solve, factor_of_a.solve_bytes() / 2 / 1e6,
                  relative_difference(x, reference));
     }
   }

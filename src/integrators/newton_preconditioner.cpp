@@ -390,9 +390,8 @@ void NewtonPreconditioner::view(PetscViewer viewer) const {
                     viewer,
                     "  CHOLMOD supernodal factor kept in %s precision: %ld entries; solved on %d "
                     "threads as %d subtrees side by side and %d supernodes above them\n",
-                    cholesky_->precision() == FactorPrecision::single ? "single" : "double",
-                    cholesky_->factor_entries(), cholesky_->threads(), cholesky_->subtrees(),
-                    cholesky_->top_supernodes()),
+                    factor_precision_name(cholesky_->precision()), cholesky_->factor_entries(),
+                    cholesky_->threads(), cholesky_->subtrees(), cholesky_->top_supernodes()),
                 "PetscViewerASCIIPrintf");
   } else if (factorizations > 0) {
     petsc_check(PCView(pc_, viewer), "PCView");

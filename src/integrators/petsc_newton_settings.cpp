@@ -50,7 +50,9 @@ int refresh_limit(const OptionReader& r, const std::string& key, int fallback) {
 
 FactorPrecision read_factor_precision(const OptionReader& r, FactorPrecision fallback) {
   static const std::vector<std::pair<std::string, FactorPrecision>> names = {
-      {"single", FactorPrecision::single}, {"double", FactorPrecision::full}};
+      {"single", FactorPrecision::single},
+      {"double", FactorPrecision::full},
+      {"half", FactorPrecision::half}};
   return r.choice("factor_precision", fallback, names);
 }
 

@@ -5,12 +5,16 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numeric>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "linear/banded_ordering.hpp"
 #include "linear/blas_threads.hpp"
+#include "linear/factor_kernels.hpp"
 
 namespace fissure {
 
@@ -19,22 +23,93 @@ namespace {
 // A supernode's rows are split over the threads only from this many entries below its diagonal
 // block (128 KB in single precision): below it a parallel region costs more than it saves.
 constexpr long kSplitEntries = 1L << 15;
+// A triangle, on the other hand, is split from this many entries: a thread it is not split
+// over waits for it at the next barrier.
+constexpr long kSplitTriangleEntries = 1L << 12;
 
-// The dense kernels of one supernode, in the precision of its values.
-void lower_solve(CBLAS_TRANSPOSE t, long n, const float* a, long lda, float* x) {
-  cblas_strsv(CblasColMajor, CblasLower, t, CblasNonUnit, n, a, lda, x, 1);
+// Whether a triangle's solves split over the threads: in single and half, whose kept inverses
+// are products (in double, BLAS solves it whole).
+bool triangle_splits(FactorPrecision precision, long columns, int threads) {
+  return precision != FactorPrecision::full && threads > 1 &&
+         columns * columns / 2 >= kSplitTriangleEntries;
 }
-void lower_solve(CBLAS_TRANSPOSE t, long n, const double* a, long lda, double* x) {
-  cblas_dtrsv(CblasColMajor, CblasLower, t, CblasNonUnit, n, a, lda, x, 1);
-}
-void multiply(CBLAS_TRANSPOSE t, long m, long n, float alpha, const float* a, long lda,
-              const float* x, float beta, float* y) {
-  cblas_sgemv(CblasColMajor, t, m, n, alpha, a, lda, x, 1, beta, y, 1);
-}
-void multiply(CBLAS_TRANSPOSE t, long m, long n, double alpha, const double* a, long lda,
-              const double* x, double beta, double* y) {
-  cblas_dgemv(CblasColMajor, t, m, n, alpha, a, lda, x, 1, beta, y, 1);
-}
+
+// Double: CHOLMOD's layout, each supernode one dense block stored by columns, the triangle of
+// its diagonal block on top of the rows below it. Its triangles are solved whole, by BLAS.
+struct DoubleBlocks {
+  using Real = double;
+  const double* values;
+  const long *super, *row_start, *value_start;
+
+  // out = L_kk⁻¹ v (only whole: a = 0, b = its columns).
+  void triangle_solve(long k, long a, long b, const double* v, double* out) const {
+    const long lda = row_start[k + 1] - row_start[k];
+    std::copy(v + a, v + b, out);
+    cblas_dtrsv(CblasColMajor, CblasLower, CblasNoTrans, CblasNonUnit, b - a,
+                values + value_start[k], lda, out, 1);
+  }
+  // out = L_kkᵀ⁻¹ v (only whole).
+  void triangle_solve_transposed(long k, long a, long b, const double* v, double* out) const {
+    const long lda = row_start[k + 1] - row_start[k];
+    std::copy(v + a, v + b, out);
+    cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, b - a, values + value_start[k],
+                lda, out, 1);
+  }
+  // out[0..b-a) = rows [a, b) of the block below the triangle times x.
+  void below(long k, long a, long b, const double* x, double* out) const {
+    const long columns = super[k + 1] - super[k], lda = row_start[k + 1] - row_start[k];
+    cblas_dgemv(CblasColMajor, CblasNoTrans, b - a, columns, 1.0,
+                values + value_start[k] + columns + a, lda, x, 1, 0.0, out, 1);
+  }
+  // sum[0..columns) = those rows, transposed, times w[0..b-a).
+  void below_transposed(long k, long a, long b, const double* w, double* sum) const {
+    const long columns = super[k + 1] - super[k], lda = row_start[k + 1] - row_start[k];
+    cblas_dgemv(CblasColMajor, CblasTrans, b - a, columns, 1.0,
+                values + value_start[k] + columns + a, lda, w, 1, 0.0, sum, 1);
+  }
+};
+
+// Single and half: the inverses of the triangles apart, in single, any rows of whose products
+// can be taken; the rows below in single (`Below` float) or in half with a scale per column.
+template <typename Below>
+struct SplitBlocks {
+  using Real = float;
+  const float* inverses;
+  const Below* belows;
+  const float* scale;
+  const long *super, *row_start, *triangle_start, *below_start;
+
+  // out[0..b-a) = rows [a, b) of L_kk⁻¹ v.
+  void triangle_solve(long k, long a, long b, const float* v, float* out) const {
+    lower_multiply(a, b, inverses + triangle_start[k], super[k + 1] - super[k], v, out);
+  }
+  // out[0..b-a) = rows [a, b) of L_kkᵀ⁻¹ v.
+  void triangle_solve_transposed(long k, long a, long b, const float* v, float* out) const {
+    const long columns = super[k + 1] - super[k];
+    lower_multiply_transposed(a, b, columns, inverses + triangle_start[k], columns, v, out);
+  }
+  void below(long k, long a, long b, const float* x, float* out) const {
+    const long c0 = super[k], columns = super[k + 1] - c0;
+    const long lda = row_start[k + 1] - row_start[k] - columns;
+    const Below* block = belows + below_start[k] + a;
+    if constexpr (std::is_same_v<Below, float>) {
+      cblas_sgemv(CblasColMajor, CblasNoTrans, b - a, columns, 1.0f, block, lda, x, 1, 0.0f, out,
+                  1);
+    } else {
+      half_multiply(b - a, columns, block, lda, scale + c0, x, out);
+    }
+  }
+  void below_transposed(long k, long a, long b, const float* w, float* sum) const {
+    const long c0 = super[k], columns = super[k + 1] - c0;
+    const long lda = row_start[k + 1] - row_start[k] - columns;
+    const Below* block = belows + below_start[k] + a;
+    if constexpr (std::is_same_v<Below, float>) {
+      cblas_sgemv(CblasColMajor, CblasTrans, b - a, columns, 1.0f, block, lda, w, 1, 0.0f, sum, 1);
+    } else {
+      half_multiply_transposed(b - a, columns, block, lda, scale + c0, w, sum);
+    }
+  }
+};
 
 void check_cholmod(const cholmod_common& common, const char* call) {
   if (common.status < 0)
@@ -62,6 +137,9 @@ double assign(const std::vector<long>& roots, const std::vector<double>& work, i
 }  // namespace
 
 SupernodalCholesky::SupernodalCholesky(FactorPrecision precision) : precision_(precision) {
+  // Without hardware half conversion the half kernels cannot run: single precision instead.
+  if (precision_ == FactorPrecision::half && !half_kernels_available())
+    precision_ = FactorPrecision::single;
   if (!cholmod_start(&common_)) throw RunError("CHOLMOD: cholmod_start failed");
   common_.supernodal = CHOLMOD_SUPERNODAL;
   common_.print = 0;  // failures are reported by the exceptions below
@@ -104,12 +182,12 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
   // BLAS threads help the factorization's dense blocks, not the solves (blas_threads.hpp).
   set_blas_threads(omp_get_max_threads());
   const int ok = cholmod_factorize(&view, factor, &common_);
-  set_blas_threads(1);
   const int status = common_.status;
   const bool definite = ok && status != CHOLMOD_NOT_POSDEF && factor->minor >= factor->n;
   const bool supernodal = factor->is_super && factor->is_ll && factor->xtype == CHOLMOD_REAL &&
                           factor->xsize == entries_;
-  if (definite && supernodal) keep_values(*factor);
+  if (definite && supernodal) keep_values(*factor);  // inverts the triangles with BLAS-3 too
+  set_blas_threads(1);
   cholmod_free_factor(&factor, &common_);
   if (status < 0) {
     cholmod_free_factor(&symbolic_, &common_);
@@ -140,16 +218,59 @@ void SupernodalCholesky::keep_structure(const cholmod_factor& factor) {
   permutation_.assign(perm, perm + factor.n);
   entries_ = factor.xsize;
   widest_ = 0;
-  for (long k = 0; k < supernodes; ++k)
-    widest_ = std::max(widest_, row_start_[k + 1] - row_start_[k]);
+  triangle_start_.assign(1, 0), below_start_.assign(1, 0);
+  for (long k = 0; k < supernodes; ++k) {
+    const long columns = super_[k + 1] - super_[k], rows = row_start_[k + 1] - row_start_[k];
+    widest_ = std::max(widest_, rows);
+    triangle_start_.push_back(triangle_start_.back() + columns * columns);
+    below_start_.push_back(below_start_.back() + (rows - columns) * columns);
+  }
 }
 
 void SupernodalCholesky::keep_values(const cholmod_factor& factor) {
   const auto* x = static_cast<const double*>(factor.x);
-  if (precision_ == FactorPrecision::single) {
-    single_.assign(x, x + entries_);
-  } else {
+  if (precision_ == FactorPrecision::full) {
     full_.assign(x, x + entries_);
+  } else {
+    keep_split_values(x);
+  }
+}
+
+void SupernodalCholesky::keep_split_values(const double* x) {
+  const long supernodes = static_cast<long>(super_.size()) - 1;
+  const bool half = precision_ == FactorPrecision::half;
+  inverses_.assign(triangle_start_.back(), 0.0f);
+  belows_single_.assign(half ? 0 : below_start_.back(), 0.0f);
+  belows_half_.assign(half ? below_start_.back() : 0, 0);
+  column_scale_.assign(half ? super_.back() : 0, 0.0f);
+  std::vector<double> inverse;
+  for (long k = 0; k < supernodes; ++k) {
+    const long c0 = super_[k], columns = super_[k + 1] - c0;
+    const long rows = row_start_[k + 1] - row_start_[k], below = rows - columns;
+    const double* block = x + value_start_[k];
+    // L_kk⁻¹ = L_kk⁻¹ I, in double before it is rounded (BLAS's triangular solve).
+    inverse.assign(columns * columns, 0.0);
+    for (long c = 0; c < columns; ++c) inverse[c * columns + c] = 1.0;
+    cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, columns, columns,
+                1.0, block, rows, inverse.data(), columns);
+    float* kept = inverses_.data() + triangle_start_[k];
+    for (long c = 0; c < columns; ++c)
+      for (long r = c; r < columns; ++r)
+        kept[c * columns + r] = static_cast<float>(inverse[c * columns + r]);
+    for (long c = 0; c < columns; ++c) {
+      const double* column = block + c * rows + columns;
+      const long start = below_start_[k] + c * below;
+      if (!half) {
+        std::copy(column, column + below, belows_single_.begin() + start);
+        continue;
+      }
+      // Scaled by the column's largest entry below the triangle: every half is then at most 1.
+      double largest = 0;
+      for (long r = 0; r < below; ++r) largest = std::max(largest, std::abs(column[r]));
+      const double scale = largest > 0 ? largest : 1;
+      column_scale_[c0 + c] = static_cast<float>(scale);
+      to_half(below, column, scale, belows_half_.data() + start);
+    }
   }
 }
 
@@ -231,23 +352,41 @@ void SupernodalCholesky::schedule(int threads) {
   std::sort(top_.begin(), top_.end());
 }
 
+int SupernodalCholesky::split_triangles() const {
+  int count = 0;
+  for (long k : top_) count += triangle_splits(precision_, super_[k + 1] - super_[k], threads_);
+  return count;
+}
+
 double SupernodalCholesky::solve_bytes() const {
-  const double value = precision_ == FactorPrecision::single ? sizeof(float) : sizeof(double);
-  return 2 * value * static_cast<double>(entries_);
+  if (precision_ == FactorPrecision::full)
+    return 2 * sizeof(double) * static_cast<double>(entries_);
+  const double below = precision_ == FactorPrecision::half ? sizeof(std::uint16_t) : sizeof(float);
+  return 2 * (sizeof(float) * static_cast<double>(triangle_start_.back()) +
+              below * static_cast<double>(below_start_.back()));
 }
 
 void SupernodalCholesky::solve(const double* b, double* x) const {
   if (!factored_) throw RunError("SupernodalCholesky: solve before a successful factorization");
-  if (precision_ == FactorPrecision::single) {
-    solve_with(single_, b, x);
+  const long *super = super_.data(), *row_start = row_start_.data();
+  const long *triangle_start = triangle_start_.data(), *below_start = below_start_.data();
+  if (precision_ == FactorPrecision::full) {
+    solve_with(DoubleBlocks{full_.data(), super, row_start, value_start_.data()}, b, x);
+  } else if (precision_ == FactorPrecision::single) {
+    solve_with(SplitBlocks<float>{inverses_.data(), belows_single_.data(), nullptr, super,
+                                  row_start, triangle_start, below_start},
+               b, x);
   } else {
-    solve_with(full_, b, x);
+    solve_with(
+        SplitBlocks<std::uint16_t>{inverses_.data(), belows_half_.data(), column_scale_.data(),
+                                   super, row_start, triangle_start, below_start},
+        b, x);
   }
 }
 
-template <typename Real>
-void SupernodalCholesky::solve_with(const std::vector<Real>& values, const double* b,
-                                    double* x) const {
+template <typename Blocks>
+void SupernodalCholesky::solve_with(const Blocks& blocks, const double* b, double* x) const {
+  using Real = typename Blocks::Real;
   const long n = static_cast<long>(permutation_.size());
   std::vector<Real> y(n);
   for (long k = 0; k < n; ++k) y[k] = static_cast<Real>(b[permutation_[k]]);  // P b
@@ -256,44 +395,42 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
   // L z = P b, supernode by supernode: the diagonal block's triangle, then the rows below it.
   // Updates of rows outside the running subtree (the supernodes above it) go to the thread's
   // own accumulator, summed before those supernodes are solved.
-  auto forward = [&](long k, Real* tmp, Real* outside, long end) {
+  auto forward = [&](long k, Real* tmp, Real* solved, Real* outside, long end) {
     const long c0 = super_[k], columns = super_[k + 1] - c0;
-    const long r0 = row_start_[k], rows = row_start_[k + 1] - r0;
-    const Real* block = values.data() + value_start_[k];
-    lower_solve(CblasNoTrans, columns, block, rows, y.data() + c0);
-    if (rows == columns) return;
-    multiply(CblasNoTrans, rows - columns, columns, Real(1), block + columns, rows, y.data() + c0,
-             Real(0), tmp);
-    for (long j = 0; j < rows - columns; ++j) {
+    const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
+    blocks.triangle_solve(k, 0, columns, y.data() + c0, solved);
+    std::copy(solved, solved + columns, y.data() + c0);
+    if (below == 0) return;
+    blocks.below(k, 0, below, y.data() + c0, tmp);
+    for (long j = 0; j < below; ++j) {
       const long r = rows_[r0 + columns + j];
       (r < end ? y[r] : outside[r]) -= tmp[j];
     }
   };
   // Lᵀ w = z, in reverse: the rows below the diagonal block (all solved), then its triangle.
-  auto backward = [&](long k, Real* tmp) {
+  auto backward = [&](long k, Real* tmp, Real* solved) {
     const long c0 = super_[k], columns = super_[k + 1] - c0;
-    const long r0 = row_start_[k], rows = row_start_[k + 1] - r0;
-    const Real* block = values.data() + value_start_[k];
-    if (rows > columns) {
-      for (long j = 0; j < rows - columns; ++j) tmp[j] = y[rows_[r0 + columns + j]];
-      multiply(CblasTrans, rows - columns, columns, Real(-1), block + columns, rows, tmp, Real(1),
-               y.data() + c0);
+    const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
+    if (below > 0) {
+      for (long j = 0; j < below; ++j) tmp[j] = y[rows_[r0 + columns + j]];
+      blocks.below_transposed(k, 0, below, tmp, solved);
+      for (long c = 0; c < columns; ++c) y[c0 + c] -= solved[c];
     }
-    lower_solve(CblasTrans, columns, block, rows, y.data() + c0);
+    blocks.triangle_solve_transposed(k, 0, columns, y.data() + c0, solved);
+    std::copy(solved, solved + columns, y.data() + c0);
   };
 
   const bool both = !top_.empty() && !subtree_first_.empty();
   std::vector<std::vector<Real>> outside(threads_, std::vector<Real>(both ? n : 0));
-  std::vector<Real> tmp(widest);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1 && !subtree_first_.empty())
   {
     const int t = omp_get_thread_num();
-    std::vector<Real> own(widest);
+    std::vector<Real> own(widest), solved(widest);
     for (std::size_t s = 0; s < subtree_first_.size(); ++s) {
       if (subtree_thread_[s] != t) continue;
       const long end = super_[subtree_last_[s] + 1];
       for (long k = subtree_first_[s]; k <= subtree_last_[s]; ++k)
-        forward(k, own.data(), outside[t].data(), end);
+        forward(k, own.data(), solved.data(), outside[t].data(), end);
     }
   }
   if (both)
@@ -301,30 +438,34 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
       for (long c = super_[k]; c < super_[k + 1]; ++c)
         for (int t = 0; t < threads_; ++t) y[c] += outside[t][c];
   // Above the subtrees the supernodes are taken one at a time, the rows of each rectangular
-  // block split over the threads (memory-bound: each thread streams its own rows). One parallel
-  // region for all of them, a barrier between supernodes: a chain (a banded factor) has
-  // thousands of small supernodes, where a region per supernode cost more than its rows.
+  // block (and, kept as an inverse, of its triangle) split over the threads: memory-bound, each
+  // thread streams its own rows. One parallel region for all of them, barriers between the
+  // phases: a chain (a banded factor) has thousands of small supernodes, where a region per
+  // supernode cost more than its rows.
+  std::vector<Real> tmp(widest), solved(widest);
   std::vector<Real> partial(static_cast<std::size_t>(threads_) * widest);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1 && !top_.empty())
   {
     const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    std::vector<Real> remaining(widest);
     for (long k : top_) {
       const long c0 = super_[k], columns = super_[k + 1] - c0;
       const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
-      const long lda = below + columns;
-      const Real* block = values.data() + value_start_[k];
       const int split = below * columns >= kSplitEntries ? team : 1;
-      if (t == 0) lower_solve(CblasNoTrans, columns, block, lda, y.data() + c0);
+      const int split_triangle = triangle_splits(precision_, columns, team) ? team : 1;
+      const long ta = lower_rows_split(columns, t, split_triangle);
+      const long tb = lower_rows_split(columns, t + 1, split_triangle);
+      if (t < split_triangle) blocks.triangle_solve(k, ta, tb, y.data() + c0, solved.data() + ta);
       if (team > 1) {
 #pragma omp barrier
       }
+      // The rows below read the solved part from `solved`: y's own part is copied meanwhile.
       if (t < split) {
         const long a = below * t / split, b = below * (t + 1) / split;
-        if (a < b)
-          multiply(CblasNoTrans, b - a, columns, Real(1), block + columns + a, lda, y.data() + c0,
-                   Real(0), tmp.data() + a);
+        if (a < b) blocks.below(k, a, b, solved.data(), tmp.data() + a);
         for (long j = a; j < b; ++j) y[rows_[r0 + columns + j]] -= tmp[j];
       }
+      if (t < split_triangle) std::copy(solved.data() + ta, solved.data() + tb, y.data() + c0 + ta);
       if (team > 1) {
 #pragma omp barrier
       }
@@ -333,27 +474,34 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
       const long k = *it;
       const long c0 = super_[k], columns = super_[k + 1] - c0;
       const long r0 = row_start_[k], below = row_start_[k + 1] - r0 - columns;
-      const long lda = below + columns;
-      const Real* block = values.data() + value_start_[k];
       const int split = below * columns >= kSplitEntries ? team : 1;
+      const int split_triangle = triangle_splits(precision_, columns, team) ? team : 1;
       if (t < split) {
         const long a = below * t / split, b = below * (t + 1) / split;
         Real* sum = partial.data() + static_cast<std::size_t>(t) * widest;
         std::fill(sum, sum + columns, Real(0));
         for (long j = a; j < b; ++j) tmp[j] = y[rows_[r0 + columns + j]];
-        if (a < b)
-          multiply(CblasTrans, b - a, columns, Real(1), block + columns + a, lda, tmp.data() + a,
-                   Real(0), sum);
+        if (a < b) blocks.below_transposed(k, a, b, tmp.data() + a, sum);
       }
       if (team > 1) {
 #pragma omp barrier
       }
-      if (t == 0) {
-        for (int u = 0; u < split; ++u)
-          for (long c = 0; c < columns; ++c)
-            y[c0 + c] -= partial[static_cast<std::size_t>(u) * widest + c];
-        lower_solve(CblasTrans, columns, block, lda, y.data() + c0);
+      // Each thread of the triangle's split takes the whole right-hand side, y's part less
+      // the rows' sums, and solves its share of the columns.
+      const long ta = lower_columns_split(columns, t, split_triangle);
+      const long tb = lower_columns_split(columns, t + 1, split_triangle);
+      if (t < split_triangle) {
+        for (long c = 0; c < columns; ++c) {
+          Real v = y[c0 + c];
+          for (int u = 0; u < split; ++u) v -= partial[static_cast<std::size_t>(u) * widest + c];
+          remaining[c] = v;
+        }
+        blocks.triangle_solve_transposed(k, ta, tb, remaining.data(), solved.data() + ta);
       }
+      if (split_triangle > 1) {
+#pragma omp barrier
+      }
+      if (t < split_triangle) std::copy(solved.data() + ta, solved.data() + tb, y.data() + c0 + ta);
       if (team > 1) {
 #pragma omp barrier
       }
@@ -362,10 +510,11 @@ void SupernodalCholesky::solve_with(const std::vector<Real>& values, const doubl
 #pragma omp parallel num_threads(threads_) if (threads_ > 1 && !subtree_first_.empty())
   {
     const int t = omp_get_thread_num();
-    std::vector<Real> own(widest);
+    std::vector<Real> own(widest), solved(widest);
     for (std::size_t s = 0; s < subtree_first_.size(); ++s) {
       if (subtree_thread_[s] != t) continue;
-      for (long k = subtree_last_[s]; k >= subtree_first_[s]; --k) backward(k, own.data());
+      for (long k = subtree_last_[s]; k >= subtree_first_[s]; --k)
+        backward(k, own.data(), solved.data());
     }
   }
   for (long k = 0; k < n; ++k) x[permutation_[k]] = static_cast<double>(y[k]);  // x = Pᵀ w

@@ -1,13 +1,17 @@
 #pragma once
 // Sparse Cholesky for a reused preconditioner factor: CHOLMOD's supernodal factorization
-// P A Pᵀ = L Lᵀ in double, then its values kept in single precision (or double) and solved by
+// P A Pᵀ = L Lᵀ in double, then its values kept in single, half or double precision and solved by
 // this class over the OpenMP threads: independent subtrees of the supernodal elimination tree
-// side by side, and the rows of each supernode above them split. A back-solve reads every entry
+// side by side, and the rows of each supernode above them split (in single and half its
+// diagonal block too, kept as its triangle's inverse). A back-solve reads every entry
 // of L twice and is bound by memory bandwidth (docs/integrators.md, "The linear solves"), so single
-// precision halves it; the Newton or Krylov iteration around the solve corrects its rounding,
-// as it corrects a stale factor's. Only the kept copy stays: CHOLMOD's double factor is freed.
+// precision halves it and half precision (the rows below the diagonal blocks in binary16, the
+// triangles in single) nearly halves it again; the Newton or Krylov iteration around the solve
+// corrects its rounding, as it corrects a stale factor's. Only the kept copy stays: CHOLMOD's
+// double factor is freed.
 #include <cholmod.h>
 
+#include <cstdint>
 #include <vector>
 
 #include "linear/factor_precision.hpp"
@@ -17,6 +21,7 @@ namespace fissure {
 
 class SupernodalCholesky {
  public:
+  // Half falls back to single on a CPU without hardware half conversion (precision() says).
   explicit SupernodalCholesky(FactorPrecision precision);
   ~SupernodalCholesky();
   SupernodalCholesky(const SupernodalCholesky&) = delete;
@@ -36,14 +41,17 @@ class SupernodalCholesky {
   // The work split chosen when the pattern was analysed (see below).
   int subtrees() const { return static_cast<int>(subtree_first_.size()); }
   int top_supernodes() const { return static_cast<int>(top_.size()); }
+  // Of those, the ones whose triangle's solves are split over the threads (single and half).
+  int split_triangles() const;
   int threads() const { return threads_; }
   FactorPrecision precision() const { return precision_; }
 
  private:
-  template <typename Real>
-  void solve_with(const std::vector<Real>& values, const double* b, double* x) const;
+  template <typename Blocks>
+  void solve_with(const Blocks& blocks, const double* b, double* x) const;
   void keep_structure(const cholmod_factor& factor);
   void keep_values(const cholmod_factor& factor);
+  void keep_split_values(const double* x);
   void schedule(int threads);
 
   FactorPrecision precision_;
@@ -51,8 +59,15 @@ class SupernodalCholesky {
   cholmod_factor* symbolic_ = nullptr;  // the analysis of A's pattern, kept
   bool factored_ = false;
   std::size_t entries_ = 0;
-  std::vector<float> single_;  // L's values in the precision solved with
+  // In double: CHOLMOD's layout (each supernode one block, its diagonal block's triangle on top
+  // of the rows below it), solved with BLAS's triangular solves. In single and half: each
+  // diagonal block kept apart as its triangle's inverse in single, so its solves are products
+  // split over the threads (factor_kernels.hpp), and the rows below it in single or in
+  // binary16 with a scale per column; each supernode's stored by columns from its start.
   std::vector<double> full_;
+  std::vector<float> inverses_, belows_single_, column_scale_;
+  std::vector<std::uint16_t> belows_half_;
+  std::vector<long> triangle_start_, below_start_;
   // The supernodal structure of L (CHOLMOD's arrays), and the most rows of a supernode.
   std::vector<long> super_, row_start_, value_start_, rows_, permutation_;
   long widest_ = 0;

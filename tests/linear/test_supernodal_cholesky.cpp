@@ -1,7 +1,7 @@
 // SupernodalCholesky, the factor petsc_newton's preconditioners keep: in double it solves as
 // CHOLMOD's own solve does, to round-off, for every way the solve is split over threads (one
-// chain, independent subtrees, subtrees below shared supernodes); in single precision its
-// backward error is that of single-precision rounding; a matrix that is not positive definite
+// chain, independent subtrees, subtrees below shared supernodes); in single and half precision
+// its backward error is that of their rounding; a matrix that is not positive definite
 // is reported, and the next factorization analyses afresh.
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -145,10 +145,11 @@ TEST(SupernodalCholesky, DoubleSolvesAsCholmodDoesOnEveryWorkSplit) {
 // permutation or a block would be of order 1.
 TEST(SupernodalCholesky, SingleSolveIsBackwardStableToSinglePrecision) {
   const double u = std::ldexp(1.0, -24);
+  bool split_seen = false;
   for (const Case& c : cases()) {
     const std::vector<double> b = random_vector(c.matrix.rows);
     std::vector<double> x(b.size()), x_double(b.size());
-    for (int threads : {1, 2}) {
+    for (int threads : {1, 2, 3}) {
       Threads scope(threads);
       SupernodalCholesky single(Precision::single), full(Precision::full);
       ASSERT_TRUE(single.factorize(c.matrix));
@@ -163,8 +164,44 @@ TEST(SupernodalCholesky, SingleSolveIsBackwardStableToSinglePrecision) {
       EXPECT_LT(error_double, 1e-15) << c.name;
       // It holds half the bytes of the double factor.
       EXPECT_EQ(2 * single.solve_bytes(), full.solve_bytes());
+      if (threads > 1) split_seen |= single.split_triangles() > 0;
     }
   }
+  // The diagonal blocks' inverses were solved split over the threads somewhere.
+  EXPECT_TRUE(split_seen);
+}
+
+// Half precision: the rows below the diagonal blocks rounded to binary16 after scaling each
+// column by its largest entry (relative rounding uₕ = 2⁻¹¹ ≈ 4.9e-4 of that entry), the
+// triangles' inverses in single: |ΔL| ≲ uₕ |L| column by column, so the backward error is of
+// order uₕ |L||Lᵀ| / |A|_F, below uₕ (measured 0.0007–0.0017 uₕ: most entries are far below
+// their column's largest). A factor left in single is near 0.03 u (u = 2⁻²⁴, the test above),
+// so the error must also exceed u (measured 5–14 u); one that dropped the column scales or a
+// block would be of order 1.
+TEST(SupernodalCholesky, HalfSolveIsBackwardStableToHalfPrecision) {
+  const double u_half = std::ldexp(1.0, -11), u = std::ldexp(1.0, -24);
+  bool split_seen = false;
+  for (const Case& c : cases()) {
+    const std::vector<double> b = random_vector(c.matrix.rows);
+    std::vector<double> x(b.size());
+    for (int threads : {1, 2, 3}) {
+      Threads scope(threads);
+      SupernodalCholesky half(Precision::half), single(Precision::single);
+      ASSERT_EQ(half.precision(), Precision::half) << "this CPU has no hardware half conversion";
+      ASSERT_TRUE(half.factorize(c.matrix));
+      ASSERT_TRUE(single.factorize(c.matrix));
+      half.solve(b.data(), x.data());
+      const double error = backward_error(c.matrix, x, b);
+      std::printf("%s, %d threads: backward error half %.2e (%.3f u_half)\n", c.name, threads,
+                  error, error / u_half);
+      EXPECT_LT(error, u_half) << c.name;
+      EXPECT_GT(error, u) << c.name;
+      // The rows below the triangles read 2 bytes an entry instead of 4.
+      EXPECT_LT(half.solve_bytes(), 0.75 * single.solve_bytes()) << c.name;
+      if (threads > 1) split_seen |= half.split_triangles() > 0;
+    }
+  }
+  EXPECT_TRUE(split_seen);
 }
 
 // A matrix with a negative eigenvalue is reported, not solved; the same pattern with positive

@@ -117,10 +117,15 @@ TEST(Config, NewtonSolverKeys) {
       parse_config(kMinimal, "scene.yaml",
                    {"integrator.type=petsc_newton", "integrator.preconditioner=nearest"});
   EXPECT_EQ(petsc_newton(nearest).preconditioner, P::nearest);
+  EXPECT_EQ(petsc_newton(
+                parse_config(kMinimal, "scene.yaml",
+                             {"integrator.type=petsc_newton", "integrator.factor_precision=half"}))
+                .factor_precision,
+            FactorPrecision::half);
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"integrator.preconditioner=ilu", "integrator.preconditioner"},
       {"integrator.krylov=bicg", "integrator.krylov"},
-      {"integrator.factor_precision=half", "integrator.factor_precision"},
+      {"integrator.factor_precision=quarter", "integrator.factor_precision"},
       {"integrator.refresh_contraction=1", "integrator.refresh_contraction: must be in (0, 1)"},
       {"integrator.refresh_iterations=2.5", "integrator.refresh_iterations: must be a whole"},
       {"integrator.scheme=sdirk5", "integrator.scheme"},
