@@ -21,7 +21,7 @@ struct ArkodeSettings final : IntegratorOptions {
   // the bar swing at 857 and 7,761 particles (docs/integrators.md).
   bool reuse_factor = false;
   int refresh_krylov = 40;  // refresh when one linear solve needs more Krylov iterations
-  FactorPrecision factor_precision = FactorPrecision::single;  // of the kept CHOLMOD factor
+  FactorPrecision factor_precision = FactorPrecision::half;  // of the kept CHOLMOD factor
   // The matrix CHOLMOD factorizes for the implicit stages: the two-hop tangent (the stage matrix
   // itself when fresh: one back-solve) or petsc_newton's `nearest` one-hop matrix (CG on the
   // exact stage matrix at every solve); auto: tangent up to 10,000 particles, nearest above.

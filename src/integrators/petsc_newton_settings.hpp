@@ -30,7 +30,7 @@ struct PetscNewtonSettings final : IntegratorOptions {
   Preconditioner preconditioner = Preconditioner::automatic;
   // The precision a CHOLMOD factor is kept and back-solved in: single halves the bytes each
   // back-solve reads; the Newton or Krylov iteration around it corrects the rounding.
-  FactorPrecision factor_precision = FactorPrecision::single;
+  FactorPrecision factor_precision = FactorPrecision::half;
   // The linear solver around it: none (modified Newton: the factor alone), cg or gmres on the
   // matrix-free tangent; auto: none with the tangent's own factor, cg otherwise.
   enum class Krylov { automatic, none, cg, gmres };

@@ -262,7 +262,7 @@ TEST(FactorReuse, AutoPicksTheTangentUpTo10000ParticlesAndGamgAbove) {
   EXPECT_EQ(choose_preconditioner(families_of(95187), true), P::gamg);
 }
 
-// The factor kept in single precision (the default) or in half against double: the Newton or
+// The factor kept in half precision (the default) or in single against double: the Newton or
 // Krylov iteration around the back-solve corrects its rounding (a normwise backward error of
 // about 2e-9 in single and below 1e-6 in half, test_supernodal_cholesky.cpp), so all stop within
 // the Newton tolerance of the same minimiser

@@ -24,7 +24,7 @@ TEST(PetscSolver, KspViewShowsPreonlyCholeskyWithCholmod) {
     if (line.find("type:") != std::string::npos || line.find("CHOLMOD") != std::string::npos)
       std::printf("%s\n", line.c_str());
   EXPECT_NE(view.find("type: preonly"), std::string::npos);
-  EXPECT_NE(view.find("CHOLMOD supernodal factor kept in single precision"), std::string::npos);
+  EXPECT_NE(view.find("CHOLMOD supernodal factor kept in half precision"), std::string::npos);
 }
 
 double statistic(const Integrator& integrator, const std::string& name) {

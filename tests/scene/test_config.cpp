@@ -91,7 +91,7 @@ TEST(Config, NewtonSolverKeys) {
   using K = PetscNewtonSettings::Krylov;
   EXPECT_EQ(petsc_newton(d).preconditioner, P::automatic);
   EXPECT_EQ(petsc_newton(d).krylov, K::automatic);
-  EXPECT_EQ(petsc_newton(d).factor_precision, FactorPrecision::single);
+  EXPECT_EQ(petsc_newton(d).factor_precision, FactorPrecision::half);
   EXPECT_TRUE(petsc_newton(d).reuse_factor);
   EXPECT_DOUBLE_EQ(petsc_newton(d).refresh_contraction, 0.25);
   EXPECT_EQ(petsc_newton(d).refresh_iterations, 6);
@@ -149,7 +149,7 @@ TEST(Config, NewtonSolverKeys) {
   EXPECT_EQ(arkode(a).factor_precision, FactorPrecision::full);
   EXPECT_EQ(
       arkode(parse_config(kMinimal, "scene.yaml", {"integrator.type=arkode"})).factor_precision,
-      FactorPrecision::single);
+      FactorPrecision::half);
   // arkode's reuse is opt-in (it did not pay where measured); petsc_newton's is on (above).
   EXPECT_FALSE(
       arkode(parse_config(kMinimal, "scene.yaml", {"integrator.type=arkode"})).reuse_factor);
