@@ -3,7 +3,7 @@
 // shifted by A M for an SDIRK4 stage at `factor` times the explicit stable estimate, factorized
 // once, then solved `solves` times for a random right-hand side by:
 //   cholmod:        CHOLMOD's own solve (double, one thread; what PETSc's PC called before);
-//   double, single: SupernodalCholesky in that precision, on 1 thread and on all threads.
+//   double, single, half: SupernodalCholesky in that precision, on 1 thread and on all threads.
 // Prints one line per solver: seconds per solve, the ratio to cholmod's, the bytes the factor
 // holds, and the solution's relative error against cholmod's (docs/accuracy.md).
 //   bench_factor_solve [particles] [solves] [factor]
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
                          fissure::FactorPrecision::half}) {
     for (int threads : {1, all}) {
       omp_set_num_threads(threads);
-      fissure::SupernodalCholesky factor_of_a(precision);
+      fissure::SupernodalCholesky factor_of_a(precision, 0);  // threaded whatever its size
       start = Clock::now();
       if (!factor_of_a.factorize(a)) {
         fmt::print(stderr, "the stage matrix is not positive definite\n");

@@ -1,25 +1,26 @@
 #include "linear/factor_kernels.hpp"
 
+#include <cpuid.h>
 #include <immintrin.h>
 
 #include <algorithm>
 #include <cmath>
 
 // The kernels that use AVX2, FMA and F16C are compiled for them alone and called only where the
-// CPU has them (half_kernels_available).
-#define FISSURE_HALF_TARGET __attribute__((target("avx2,fma,f16c")))
+// CPU has them (simd_kernels_available).
+#define FISSURE_SIMD_TARGET __attribute__((target("avx2,fma,f16c")))
 
 namespace fissure {
 
 namespace {
 
-FISSURE_HALF_TARGET inline __m256 load8(const std::uint16_t* h) {
+FISSURE_SIMD_TARGET inline __m256 load8(const std::uint16_t* h) {
   return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(h)));
 }
 
-FISSURE_HALF_TARGET inline float load1(const std::uint16_t* h) { return _cvtsh_ss(*h); }
+FISSURE_SIMD_TARGET inline float load1(const std::uint16_t* h) { return _cvtsh_ss(*h); }
 
-FISSURE_HALF_TARGET inline float sum8(__m256 v) {
+FISSURE_SIMD_TARGET inline float sum8(__m256 v) {
   __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
   s = _mm_add_ps(s, _mm_movehl_ps(s, s));
   s = _mm_add_ss(s, _mm_movehdup_ps(s));
@@ -50,7 +51,7 @@ void lower_multiply_transposed_plain(long a, long b, long n, const float* t, lon
 
 // With AVX2, four columns at a time as in the half kernels below; the rows where the four
 // columns' triangle starts (i < j + 3) are taken one by one.
-FISSURE_HALF_TARGET void lower_multiply_avx2(long a, long b, const float* t, long lda,
+FISSURE_SIMD_TARGET void lower_multiply_avx2(long a, long b, const float* t, long lda,
                                              const float* v, float* out) {
   std::fill(out, out + (b - a), 0.0f);
   long j = 0;
@@ -80,7 +81,7 @@ FISSURE_HALF_TARGET void lower_multiply_avx2(long a, long b, const float* t, lon
   }
 }
 
-FISSURE_HALF_TARGET void lower_multiply_transposed_avx2(long a, long b, long n, const float* t,
+FISSURE_SIMD_TARGET void lower_multiply_transposed_avx2(long a, long b, long n, const float* t,
                                                         long lda, const float* v, float* out) {
   long j = a;
   for (; j + 4 <= b; j += 4) {
@@ -114,26 +115,34 @@ FISSURE_HALF_TARGET void lower_multiply_transposed_avx2(long a, long b, long n, 
 
 }  // namespace
 
-bool half_kernels_available() {
-  return __builtin_cpu_supports("f16c") && __builtin_cpu_supports("avx2") &&
-         __builtin_cpu_supports("fma");
+bool simd_kernels_available() {
+  // F16C from CPUID leaf 1 (not every compiler's __builtin_cpu_supports knows it).
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  const bool f16c = __get_cpuid(1, &eax, &ebx, &ecx, &edx) && (ecx & bit_F16C);
+  return f16c && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 }
 
 namespace {
 
-const bool kAvx2 = half_kernels_available();
+const bool kSimd = simd_kernels_available();
 
 }  // namespace
 
 void lower_multiply(long a, long b, const float* t, long lda, const float* v, float* out) {
-  if (kAvx2) return lower_multiply_avx2(a, b, t, lda, v, out);
-  lower_multiply_plain(a, b, t, lda, v, out);
+  if (kSimd) {
+    lower_multiply_avx2(a, b, t, lda, v, out);
+  } else {
+    lower_multiply_plain(a, b, t, lda, v, out);
+  }
 }
 
 void lower_multiply_transposed(long a, long b, long n, const float* t, long lda, const float* v,
                                float* out) {
-  if (kAvx2) return lower_multiply_transposed_avx2(a, b, n, t, lda, v, out);
-  lower_multiply_transposed_plain(a, b, n, t, lda, v, out);
+  if (kSimd) {
+    lower_multiply_transposed_avx2(a, b, n, t, lda, v, out);
+  } else {
+    lower_multiply_transposed_plain(a, b, n, t, lda, v, out);
+  }
 }
 
 // Row i holds i + 1 entries: the rows before n sqrt(part / parts) hold that share of them.
@@ -147,13 +156,13 @@ long lower_columns_split(long n, int part, int parts) {
   return n - lower_rows_split(n, parts - part, parts);
 }
 
-FISSURE_HALF_TARGET void to_half(long n, const double* v, double scale, std::uint16_t* h) {
+FISSURE_SIMD_TARGET void to_half(long n, const double* v, double scale, std::uint16_t* h) {
   for (long i = 0; i < n; ++i)
     h[i] = _cvtss_sh(static_cast<float>(v[i] / scale), _MM_FROUND_TO_NEAREST_INT);
 }
 
 // Four columns at a time: each pass over y streams four columns of A.
-FISSURE_HALF_TARGET void half_multiply(long m, long n, const std::uint16_t* a, long lda,
+FISSURE_SIMD_TARGET void half_multiply(long m, long n, const std::uint16_t* a, long lda,
                                        const float* scale, const float* x, float* y) {
   const long m8 = m - m % 8;
   for (long i = 0; i < m; ++i) y[i] = 0;
@@ -186,7 +195,7 @@ FISSURE_HALF_TARGET void half_multiply(long m, long n, const std::uint16_t* a, l
 }
 
 // Four columns at a time: each load of w serves four dot products.
-FISSURE_HALF_TARGET void half_multiply_transposed(long m, long n, const std::uint16_t* a, long lda,
+FISSURE_SIMD_TARGET void half_multiply_transposed(long m, long n, const std::uint16_t* a, long lda,
                                                   const float* scale, const float* w, float* y) {
   const long m8 = m - m % 8;
   long j = 0;

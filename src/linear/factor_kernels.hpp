@@ -21,8 +21,9 @@ void lower_multiply_transposed(long a, long b, long n, const float* t, long lda,
 long lower_rows_split(long n, int part, int parts);
 long lower_columns_split(long n, int part, int parts);
 
-// True when this CPU has the F16C, AVX2 and FMA instructions the kernels below use.
-bool half_kernels_available();
+// True when this CPU has the F16C, AVX2 and FMA instructions: the half kernels below need them,
+// the triangle products above use them where they are.
+bool simd_kernels_available();
 
 // h[i] = v[i] / scale, rounded to the nearest half.
 void to_half(long n, const double* v, double scale, std::uint16_t* h);

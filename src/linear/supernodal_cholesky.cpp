@@ -136,9 +136,10 @@ double assign(const std::vector<long>& roots, const std::vector<double>& work, i
 
 }  // namespace
 
-SupernodalCholesky::SupernodalCholesky(FactorPrecision precision) : precision_(precision) {
+SupernodalCholesky::SupernodalCholesky(FactorPrecision precision, double threaded_bytes)
+    : precision_(precision), threaded_bytes_(threaded_bytes) {
   // Without hardware half conversion the half kernels cannot run: single precision instead.
-  if (precision_ == FactorPrecision::half && !half_kernels_available())
+  if (precision_ == FactorPrecision::half && !simd_kernels_available())
     precision_ = FactorPrecision::single;
   if (!cholmod_start(&common_)) throw RunError("CHOLMOD: cholmod_start failed");
   common_.supernodal = CHOLMOD_SUPERNODAL;
@@ -174,7 +175,7 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
       throw RunError("CHOLMOD: cholmod_analyze did not return a supernodal analysis");
     // The structure and the work split follow from the pattern: kept until it is analysed again.
     keep_structure(*symbolic_);
-    schedule(omp_get_max_threads());
+    schedule(solve_bytes() / 2 < threaded_bytes_ ? 1 : omp_get_max_threads());
   }
   // The numeric factor lives only until its values are copied: the double factor is not kept.
   cholmod_factor* factor = cholmod_copy_factor(symbolic_, &common_);

@@ -21,8 +21,11 @@ namespace fissure {
 
 class SupernodalCholesky {
  public:
-  // Half falls back to single on a CPU without hardware half conversion (precision() says).
-  explicit SupernodalCholesky(FactorPrecision precision);
+  // Half falls back to single on a CPU without hardware half conversion (precision() says). A
+  // factor that keeps fewer than `threaded_bytes` is solved on one thread: it sits in the cache,
+  // where a second thread adds barriers and no bandwidth (docs/integrators.md).
+  static constexpr double kThreadedBytes = 32e6;
+  explicit SupernodalCholesky(FactorPrecision precision, double threaded_bytes = kThreadedBytes);
   ~SupernodalCholesky();
   SupernodalCholesky(const SupernodalCholesky&) = delete;
   SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
@@ -55,6 +58,7 @@ class SupernodalCholesky {
   void schedule(int threads);
 
   FactorPrecision precision_;
+  double threaded_bytes_;
   cholmod_common common_{};
   cholmod_factor* symbolic_ = nullptr;  // the analysis of A's pattern, kept
   bool factored_ = false;

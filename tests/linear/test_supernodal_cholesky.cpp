@@ -112,7 +112,7 @@ TEST(SupernodalCholesky, DoubleSolvesAsCholmodDoesOnEveryWorkSplit) {
     cholmod.solve(b.data(), reference.data());
     for (int threads : {1, 2, 3}) {
       Threads scope(threads);
-      SupernodalCholesky factor(Precision::full);
+      SupernodalCholesky factor(Precision::full, 0);
       ASSERT_TRUE(factor.factorize(c.matrix)) << c.name;
       factor.solve(b.data(), x.data());
       const double difference = relative_difference(x, reference);
@@ -151,7 +151,7 @@ TEST(SupernodalCholesky, SingleSolveIsBackwardStableToSinglePrecision) {
     std::vector<double> x(b.size()), x_double(b.size());
     for (int threads : {1, 2, 3}) {
       Threads scope(threads);
-      SupernodalCholesky single(Precision::single), full(Precision::full);
+      SupernodalCholesky single(Precision::single, 0), full(Precision::full, 0);
       ASSERT_TRUE(single.factorize(c.matrix));
       ASSERT_TRUE(full.factorize(c.matrix));
       single.solve(b.data(), x.data());
@@ -186,7 +186,7 @@ TEST(SupernodalCholesky, HalfSolveIsBackwardStableToHalfPrecision) {
     std::vector<double> x(b.size());
     for (int threads : {1, 2, 3}) {
       Threads scope(threads);
-      SupernodalCholesky half(Precision::half), single(Precision::single);
+      SupernodalCholesky half(Precision::half, 0), single(Precision::single, 0);
       ASSERT_EQ(half.precision(), Precision::half) << "this CPU has no hardware half conversion";
       ASSERT_TRUE(half.factorize(c.matrix));
       ASSERT_TRUE(single.factorize(c.matrix));
@@ -202,6 +202,26 @@ TEST(SupernodalCholesky, HalfSolveIsBackwardStableToHalfPrecision) {
     }
   }
   EXPECT_TRUE(split_seen);
+}
+
+// A factor below the threaded size is solved on one thread (in the cache a second one only adds
+// barriers: bench_factor_solve, docs/integrators.md); from that size on, on all of them.
+TEST(SupernodalCholesky, SmallFactorIsSolvedOnOneThread) {
+  const SparseSymmetric a = grid_laplacian(40, 1e-3, 1);
+  Threads scope(2);
+  SupernodalCholesky small(Precision::half), threaded(Precision::half, 0);
+  ASSERT_TRUE(small.factorize(a));
+  ASSERT_TRUE(threaded.factorize(a));
+  EXPECT_LT(small.solve_bytes() / 2, SupernodalCholesky::kThreadedBytes);
+  EXPECT_EQ(small.threads(), 1);
+  EXPECT_EQ(threaded.threads(), 2);
+  const std::vector<double> b = random_vector(a.rows);
+  std::vector<double> x(b.size()), y(b.size());
+  small.solve(b.data(), x.data());
+  threaded.solve(b.data(), y.data());
+  // The same factor, its float sums in another order: within κ u ≈ 8e3 × 6e-8 = 5e-4 (κ of the
+  // shifted grid Laplacian about 8 / 1e-3); a thread's share dropped would be of order 1.
+  EXPECT_LT(relative_difference(x, y), 5e-4);
 }
 
 // A matrix with a negative eigenvalue is reported, not solved; the same pattern with positive
