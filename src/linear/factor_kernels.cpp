@@ -116,6 +116,8 @@ FISSURE_SIMD_TARGET void lower_multiply_transposed_avx2(long a, long b, long n, 
 }  // namespace
 
 bool simd_kernels_available() {
+  // Called from a static initializer too (below), possibly before the compiler's own detection.
+  __builtin_cpu_init();
   // F16C from CPUID leaf 1 (not every compiler's __builtin_cpu_supports knows it).
   unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
   const bool f16c = __get_cpuid(1, &eax, &ebx, &ecx, &edx) && (ecx & bit_F16C);
