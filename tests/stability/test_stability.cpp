@@ -56,11 +56,16 @@ output: {every: 0.005, probe_every: 0.0005}
 
 // At 100× the explicit limit every implicit integrator completes. Newmark (average
 // acceleration) conserves the energy of a linear problem exactly; what is left is the
-// nonlinearity of this small sag and Newton's stopping error, each step's residual below
-// rtol 1e-6 of its first one, whose work is of order rtol² at Newton's quadratic rate:
-// |balance| ≤ 1e-6 of the energy scale (measured 1.7e-9). Backward Euler, generalized-α and SDIRK
-// dissipate: they may lose energy but not create it, balance ≤ +1e-6, the same allowance for
-// Newton's stopping error (docs/output.md: a dissipative integrator's balance is ≤ 0).
+// nonlinearity of this small sag and Newton's stopping error. Each step stops with a residual
+// below rtol = 1e-6 of its first one, and that residual does spurious work over the step's
+// displacement: first order in rtol, since modified Newton (a reused factor) converges
+// linearly and need not overshoot the tolerance. The first residual times the step's
+// displacement is at most the energy scale, so |balance| ≤ steps × rtol of it (measured 1.3e-6
+// over 36 steps with the half-precision factor; 1.7e-9 with the single one, whose Newton
+// iterations happened to overshoot). Backward Euler and generalized-α dissipate: they may lose
+// energy but not create it, balance ≤ the same allowance for Newton's stopping error
+// (docs/output.md: a dissipative integrator's balance is ≤ 0); ARKODE's SDIRK keeps its own
+// 1e-6.
 TEST(Stability, GlassModuliImplicitAt100TimesTheExplicitLimit) {
   const double dt = 100 * stable_step(kGlassBar);
   struct Variant {
@@ -75,10 +80,11 @@ TEST(Stability, GlassModuliImplicitAt100TimesTheExplicitLimit) {
     const CaseRun run = run_case(v.name, "integrator: {type: petsc_newton}\n" + kGlassBar, args);
     ASSERT_TRUE(test::completed_within_speed_bound(run));
     const double error = run.energy.at("balance_error");
+    const double newton_allowance = run.number("steps") * 1e-6;
     if (v.conserving)
-      EXPECT_LT(std::abs(error), 1e-6) << v.name;
+      EXPECT_LT(std::abs(error), newton_allowance) << v.name;
     else
-      EXPECT_LT(error, 1e-6) << v.name;
+      EXPECT_LT(error, newton_allowance) << v.name;
   }
   const CaseRun run =
       run_case("glass_arkode_sdirk_100x",
