@@ -155,6 +155,7 @@ long lower_rows_split(long n, int part, int parts) {
 
 // Column j holds n - j entries: the mirror of the rows' split.
 long lower_columns_split(long n, int part, int parts) {
+  if (part >= parts) return n;
   return n - lower_rows_split(n, parts - part, parts);
 }
 

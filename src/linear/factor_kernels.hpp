@@ -17,7 +17,7 @@ void lower_multiply(long a, long b, const float* t, long lda, const float* v, fl
 void lower_multiply_transposed(long a, long b, long n, const float* t, long lda, const float* v,
                                float* out);
 // The first row (or column) of part `part` of `parts` that give each part about the same
-// entries of an n-row lower triangle in those products.
+// entries of an n-row lower triangle in those products; n for part >= parts.
 long lower_rows_split(long n, int part, int parts);
 long lower_columns_split(long n, int part, int parts);
 
