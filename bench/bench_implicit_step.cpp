@@ -8,8 +8,9 @@
 // peak resident memory of the process. One size per process, so that the peak is that size's
 // (bench/run_implicit_bench.sh runs 1e3, 1e4, 1e5).
 //   bench_implicit_step [particles] [steps] [factor] [scheme] [preconditioner] [petsc_options]
-//                       [batches]
-// (petsc_options as integrator.petsc_options, e.g. "-ksp_rtol 1e-2"; batches 3 by default).
+//                       [batches] [factor_precision]
+// (petsc_options as integrator.petsc_options, e.g. "-ksp_rtol 1e-2"; batches 3 by default;
+// factor_precision as integrator.factor_precision, the integrator's default when not given).
 #include <fmt/format.h>
 #include <sys/resource.h>
 
@@ -49,16 +50,19 @@ int main(int argc, char** argv) {
   const std::string preconditioner = argc > 5 ? argv[5] : "auto";
   const std::string petsc_options = argc > 6 ? argv[6] : "";
   const int batches = argc > 7 ? std::max(1, std::atoi(argv[7])) : 3;
+  const std::string precision =
+      argc > 8 ? fmt::format(", factor_precision: {}", argv[8]) : std::string();
   // TetGen gives about 14.8 tets per λ³ at its quality settings; the bar is 0.01 m³.
   const double lambda = std::cbrt(14.8 * 0.01 / target);
   const std::string yaml = fmt::format(
       "time: {{end: 1.0}}\ngravity: [0, 0, -9.81]\nintegrator: {{type: petsc_newton, scheme: {1}, "
-      "preconditioner: {2}, petsc_options: \"{4}\"}}\nbodies:\n  - geometry: {{box: {{min: [0, 0, "
+      "preconditioner: {2}, petsc_options: \"{4}\"{5}}}\nbodies:\n  - geometry: {{box: {{min: [0, "
+      "0, "
       "0], max: [1.0, 0.1, "
       "0.1]}}}}\n    resolution: {0}\n    horizon: 1.45\n    material: {{model: lps, density: "
       "2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\nconstraints:\n  - {{region: {{box: "
       "{{min: [-1, -1, -1], max: [{3}, 1, 1]}}}}, fix: true}}\n",
-      lambda, scheme, preconditioner, 0.6 * lambda, petsc_options);
+      lambda, scheme, preconditioner, 0.6 * lambda, petsc_options, precision);
   auto start = Clock::now();
   const fissure::Config config = fissure::parse_config(yaml, "bench_implicit_step.yaml");
   const fissure::Scene scene = fissure::build_scene(config);

@@ -41,6 +41,9 @@ class NewtonPreconditioner {
   void refresh(const double* z);
   // x = P⁻¹ r.
   void apply(Vec r, Vec x);
+  // Half to single precision for the factors from the next refresh on (SupernodalCholesky::
+  // raise_precision); false when the factor is not kept in half precision.
+  bool raise_precision() { return cholesky_ && cholesky_->raise_precision(); }
   // Bonds broke: the scalar stiffness is assembled again at the next refresh.
   void bonds_changed() { scalar_assembled_ = false; }
   void view(PetscViewer viewer) const;

@@ -52,7 +52,7 @@ struct PetscNewtonSettings final : IntegratorOptions {
   int load_increments() const override { return scheme == Scheme::static_equilibrium ? steps : 0; }
 };
 
-// integrator.factor_precision (petsc_newton's and arkode's): `single` or `double`.
+// integrator.factor_precision (petsc_newton's and arkode's): `half`, `single` or `double`.
 FactorPrecision read_factor_precision(const OptionReader& r, FactorPrecision fallback);
 
 // The keys under integrator: that are petsc_newton's own, and their parser.

@@ -359,6 +359,17 @@ int SupernodalCholesky::split_triangles() const {
   return count;
 }
 
+bool SupernodalCholesky::raise_precision() {
+  if (precision_ != FactorPrecision::half) return false;
+  precision_ = FactorPrecision::single;
+  factored_ = false;
+  belows_half_ = {};
+  column_scale_ = {};
+  // single reads more bytes per solve: the split over threads is chosen again for them
+  if (symbolic_) schedule(solve_bytes() / 2 < threaded_bytes_ ? 1 : omp_get_max_threads());
+  return true;
+}
+
 double SupernodalCholesky::solve_bytes() const {
   if (precision_ == FactorPrecision::full)
     return 2 * sizeof(double) * static_cast<double>(entries_);

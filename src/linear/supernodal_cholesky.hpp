@@ -35,6 +35,10 @@ class SupernodalCholesky {
   bool factorize(const SparseSymmetric& A);
   // x = A⁻¹ b with the kept factor (b and x may be the same array).
   void solve(const double* b, double* x) const;
+  // From half to single precision, for the factorizations from the next one on (the kept factor
+  // is dropped): where half's rounding, amplified by the matrix's condition, spoils the solves.
+  // False when the factor is not in half precision.
+  bool raise_precision();
 
   // Entries of L as stored (supernodes hold their dense blocks), and the bytes one solve reads.
   long factor_entries() const { return static_cast<long>(entries_); }

@@ -206,6 +206,38 @@ TEST(SupernodalCholesky, HalfSolveIsBackwardStableToHalfPrecision) {
   EXPECT_TRUE(split_seen);
 }
 
+// A raised factor (half to single, what petsc_newton does where half's rounding spoils its
+// solves) is kept in single from its next factorization on: the same bits as a factor made in
+// single, and a backward error at single's level again. A raise of a single factor does nothing.
+TEST(SupernodalCholesky, RaisedHalfFactorSolvesAsSingleDoes) {
+  if (!simd_kernels_available()) GTEST_SKIP() << "this CPU has no hardware half conversion";
+  const Case c = cases().back();
+  const std::vector<double> b = random_vector(c.matrix.rows);
+  std::vector<double> x(b.size()), y(b.size());
+  Threads scope(2);
+  SupernodalCholesky raised(Precision::half, 0), single(Precision::single, 0);
+  ASSERT_TRUE(raised.factorize(c.matrix));
+  ASSERT_TRUE(single.factorize(c.matrix));
+  const double half_bytes = raised.solve_bytes();
+  EXPECT_TRUE(raised.raise_precision());
+  EXPECT_EQ(raised.precision(), Precision::single);
+  EXPECT_FALSE(raised.raise_precision());
+  EXPECT_FALSE(single.raise_precision());
+  // the half factor is gone until the next factorization
+  EXPECT_THROW(raised.solve(b.data(), x.data()), RunError);
+  ASSERT_TRUE(raised.factorize(c.matrix));
+  EXPECT_GT(raised.solve_bytes(), half_bytes);
+  EXPECT_EQ(raised.solve_bytes(), single.solve_bytes());
+  EXPECT_EQ(raised.threads(), single.threads());
+  raised.solve(b.data(), x.data());
+  single.solve(b.data(), y.data());
+  EXPECT_EQ(x, y);
+  const double error = backward_error(c.matrix, x, b);
+  std::printf("%s: backward error after the raise %.2e (%.3f u)\n", c.name, error,
+              error / std::ldexp(1.0, -24));
+  EXPECT_LT(error, std::ldexp(1.0, -24));
+}
+
 // A factor below the threaded size is solved on one thread (in the cache a second one only adds
 // barriers: bench_factor_solve, docs/integrators.md); from that size on, on all of them.
 TEST(SupernodalCholesky, SmallFactorIsSolvedOnOneThread) {
