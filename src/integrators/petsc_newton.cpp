@@ -567,6 +567,11 @@ double PetscNewton::step(Dynamics& dynamics, State& state, double dt) {
     }
     if (const std::vector<double>* n = find_array(restored_, "integrator.increments"))
       solver_->increments = static_cast<long>(n->at(0));
+    // a raised factor stays raised over a resume, so that the resumed steps are the same bits
+    if (const std::vector<double>* r = find_array(restored_, "integrator.precision_raises")) {
+      solver_->precision_raises = static_cast<long>(r->at(0));
+      if (solver_->precision_raises > 0) solver_->preconditioner->raise_precision();
+    }
     restored_.clear();
   }
   Solver& s = *solver_;
@@ -729,7 +734,8 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
 
 NamedArrays PetscNewton::saved_state() const {
   if (!solver_) return restored_;
-  NamedArrays state = {{"integrator.increments", {double(solver_->increments)}}};
+  NamedArrays state = {{"integrator.increments", {double(solver_->increments)}},
+                       {"integrator.precision_raises", {double(solver_->precision_raises)}}};
   if (solver_->have_acceleration)
     state.emplace_back("integrator.acceleration", solver_->acceleration);
   return state;
