@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <limits>
 #include <string>
 
@@ -40,9 +41,7 @@ double peak_resident_gigabytes() {
   return usage.ru_maxrss / 1048576.0;  // kilobytes on Linux
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const double target = argc > 1 ? std::atof(argv[1]) : 1.0e4;
   const int steps = argc > 2 ? std::atoi(argv[2]) : 5;
   const double factor = argc > 3 ? std::atof(argv[3]) : 100;
@@ -118,4 +117,16 @@ int main(int argc, char** argv) {
     if (value != 0) fmt::print("{} {:.0f}\n", name, value);
   fmt::print("peak_memory_gb {:.3f}\n", peak_resident_gigabytes());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    // a step that fails (e.g. with smoother options that break CG) is reported, not a crash
+    fmt::print(stderr, "bench_implicit_step: {}\n", e.what());
+    return 1;
+  }
 }
