@@ -1,10 +1,13 @@
 // The PETSc Newton integrator's linear solver: a CHOLMOD Cholesky factorization applied once
 // (KSPPREONLY, the factor kept in single precision by SupernodalCholesky), verified through
-// PETSc's view of the solver; and the `auto`
+// PETSc's view of the solver; gamg's level smoothers; and the `auto`
 // tangent's fallback to `projected` where the exact tangent cannot be factorized.
 #include <gtest/gtest.h>
+#include <petscsys.h>
 
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "integrators/petsc_newton.hpp"
@@ -25,6 +28,46 @@ TEST(PetscSolver, KspViewShowsPreonlyCholeskyWithCholmod) {
       std::printf("%s\n", line.c_str());
   EXPECT_NE(view.find("type: preonly"), std::string::npos);
   EXPECT_NE(view.find("CHOLMOD supernodal factor kept in half precision"), std::string::npos);
+}
+
+// The view's level smoothers (KSP objects prefixed precond_mg_levels_) and their iteration limits.
+std::vector<int> smoother_limits(const std::string& view) {
+  std::vector<int> limits;
+  std::istringstream lines(view);
+  bool level = false;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("KSP Object: (precond_mg_levels_") != std::string::npos) level = true;
+    const std::size_t at = line.find("maximum iterations=");
+    if (level && at != std::string::npos) {
+      limits.push_back(std::stoi(line.substr(at + 19)));
+      level = false;
+    }
+  }
+  return limits;
+}
+
+// gamg smooths each level once (PETSc makes two sweeps: docs/integrators.md, "The linear
+// solves", for what that saves), unless PETSC_OPTIONS sets the levels' limit.
+TEST(PetscSolver, GamgSmoothsEachLevelOnceUnlessPetscOptionsSayOtherwise) {
+  auto v = test::make_vibration();
+  PetscNewtonSettings settings;
+  settings.preconditioner = PetscNewtonSettings::Preconditioner::gamg;
+  auto limits_of_a_step = [&] {
+    PetscNewton integrator(settings, "test");
+    State s = v->initial;
+    integrator.step(*v->dynamics, s, 10 * v->stable_dt);
+    return smoother_limits(integrator.solver_view());
+  };
+  const std::vector<int> ours = limits_of_a_step();
+  std::printf("gamg: %zu levels smoothed\n", ours.size());
+  ASSERT_GE(ours.size(), 1u) << "no multigrid level to smooth";
+  for (int limit : ours) EXPECT_EQ(limit, 1);
+  // what PETSC_OPTIONS puts in the global options database
+  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-precond_mg_levels_ksp_max_it", "3"), 0);
+  const std::vector<int> theirs = limits_of_a_step();
+  ASSERT_EQ(PetscOptionsClearValue(nullptr, "-precond_mg_levels_ksp_max_it"), 0);
+  ASSERT_EQ(theirs.size(), ours.size());
+  for (int limit : theirs) EXPECT_EQ(limit, 3);
 }
 
 double statistic(const Integrator& integrator, const std::string& name) {
