@@ -40,9 +40,9 @@ constexpr int kGamgMembers = 30;
 // gamg's default -pc_gamg_threshold (a user's -precond_pc_gamg_threshold overrides it).
 constexpr PetscReal kGamgThreshold = 0.02;
 
-// One smoothing sweep per level instead of PETSc's two: more CG iterations (64 against 52 over
-// two steps at 95,187 particles) but cheaper V-cycles, 4.56 against 5.69 s per step there and
-// 0.40 against 0.55 s at 7,948 (bench_implicit_step, 2026-12-05). Set on each level's smoother
+// One smoothing sweep per level instead of PETSc's two: more CG iterations (21 against 17 per
+// step at 95,187 particles) but cheaper V-cycles, 4.48 against 5.69 s per step there and 0.403
+// against 0.543 s at 7,948 (bench_implicit_step, 2026-12-05; docs/accuracy.md). Set on each level's smoother
 // after every set-up (GAMG may make the levels anew), unless PETSC_OPTIONS sets
 // -precond_mg_levels_ksp_max_it: the levels read only the global options database.
 void smooth_once_per_level(PC pc) {
