@@ -24,6 +24,8 @@
 
 #include "integrators/integrator.hpp"
 #include "integrators/newton_preconditioner.hpp"
+#include "integrators/petsc_newton_settings.hpp"
+#include "linear/factor_precision.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
@@ -55,10 +57,9 @@ int run(int argc, char** argv) {
   const double lambda = std::cbrt(14.8 * 0.01 / target);
   const std::string yaml = fmt::format(
       "time: {{end: 1.0}}\ngravity: [0, 0, -9.81]\nintegrator: {{type: petsc_newton, scheme: {1}, "
-      "preconditioner: {2}, petsc_options: \"{4}\"{5}}}\nbodies:\n  - geometry: {{box: {{min: [0, "
-      "0, "
-      "0], max: [1.0, 0.1, "
-      "0.1]}}}}\n    resolution: {0}\n    horizon: 1.45\n    material: {{model: lps, density: "
+      "preconditioner: {2}, petsc_options: \"{4}\"{5}}}\nbodies:\n"
+      "  - geometry: {{box: {{min: [0, 0, 0], max: [1.0, 0.1, 0.1]}}}}\n"
+      "    resolution: {0}\n    horizon: 1.45\n    material: {{model: lps, density: "
       "2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\nconstraints:\n  - {{region: {{box: "
       "{{min: [-1, -1, -1], max: [{3}, 1, 1]}}}}, fix: true}}\n",
       lambda, scheme, preconditioner, 0.6 * lambda, petsc_options, precision);
@@ -101,6 +102,10 @@ int run(int argc, char** argv) {
   fmt::print("particles {}\n", n);
   fmt::print("directed_bonds {}\n", scene.families.directed_bonds());
   fmt::print("scheme {}\npreconditioner {}\n", scheme, preconditioner);
+  fmt::print("factor_precision {}\n",
+             argc > 8
+                 ? argv[8]
+                 : fissure::factor_precision_name(fissure::PetscNewtonSettings{}.factor_precision));
   if (preconditioner == "auto")
     fmt::print("preconditioner_chosen {}\n",
                fissure::preconditioner_name(fissure::choose_preconditioner(scene.families)));

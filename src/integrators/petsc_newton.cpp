@@ -64,6 +64,7 @@ struct PetscNewton::Solver {
   NewtonSystem::Tangent factor_tangent = NewtonSystem::Tangent::automatic;
   bool factor_failed = false;        // the last refresh met a matrix not positive definite
   int iterations_since_refresh = 0;  // in the current Newton solve
+  bool solve_fresh = false;  // the last linear solve's factor was made at that iteration's point
   std::vector<double> norms;         // |r_k| of the current Newton solve
   // |r| that round-off in the positions alone produces (residual_floor): no Newton iteration
   // can go below it, so a solve there has converged and its contraction means nothing.
@@ -162,6 +163,14 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
   });
 }
 
+// Whether the last Newton iteration reduced |r| by less than refresh_contraction (above the
+// round-off floor, where a contraction means nothing).
+bool contracted_slowly(const Solver& s) {
+  const std::size_t k = s.norms.size();
+  return k >= 2 && s.norms[k - 2] > 10 * s.floor &&
+         s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2];
+}
+
 // Why the factor must be refreshed before this Newton iteration's linear solve, or none.
 Solver::Refresh refresh_reason(Solver& s) {
   if (s.pending != Refreshes::none) return s.pending;
@@ -169,12 +178,9 @@ Solver::Refresh refresh_reason(Solver& s) {
   if (!same_step_coefficient(s.system.inertia(), s.factor_inertia)) return Refreshes::step_size;
   if (s.system.tangent() != s.factor_tangent) return Refreshes::fallback;
   if (!s.preconditioner->follows_the_state()) return Refreshes::none;
-  const std::size_t k = s.norms.size();
-  if (k >= 2 && s.norms[k - 2] > 10 * s.floor &&
-      s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2])
-    return Refreshes::convergence;
+  if (contracted_slowly(s)) return Refreshes::convergence;
   if (s.iterations_since_refresh >= s.refresh_iterations) return Refreshes::convergence;
-  if (s.krylov && k >= 2) {
+  if (s.krylov && s.norms.size() >= 2) {
     PetscInt its = 0;
     petsc_check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
     if (its > s.refresh_krylov) return Refreshes::convergence;
@@ -210,13 +216,15 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
     const double* z = to_full(*s, local, s->full_point, true);
     s->system.linearize(z);
     const Solver::Refresh reason = refresh_reason(*s);
-    // Slow convergence with the factor made for the very last iteration is not staleness: where
-    // that factor is in half precision, its rounding times the matrix's condition is the likely
-    // cause (backward Euler at 300 explicit steps: contraction 0.48 in half, 0.009 in single),
-    // which a refresh in half would repeat.
-    if (reason == Refreshes::convergence && s->iterations_since_refresh == 1 &&
-        s->preconditioner->raise_precision())
+    // A slow contraction of an iteration whose factor was made at its own point is not
+    // staleness: where that factor is in half precision, its rounding times the matrix's
+    // condition is the likely cause (backward Euler at 300 explicit steps: contraction 0.48 in
+    // half, 0.009 in single), which a refresh in half would repeat. Only the contraction test
+    // says so: the iteration and Krylov limits do not measure the factor's accuracy.
+    if ((reason == Refreshes::convergence || reason == Refreshes::every_iteration) &&
+        s->solve_fresh && contracted_slowly(*s) && s->preconditioner->raise_precision())
       ++s->precision_raises;
+    s->solve_fresh = false;
     if (reason != Refreshes::none) {
       s->pending = Refreshes::none;
       s->factor_inertia = s->system.inertia();
@@ -233,6 +241,7 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
         petsc_check(VecRestoreArrayRead(x, &local), "VecRestoreArrayRead");
         throw;
       }
+      s->solve_fresh = true;
     }
     ++s->iterations_since_refresh;
     petsc_check(VecRestoreArrayRead(x, &local), "VecRestoreArrayRead");

@@ -10,6 +10,7 @@
 
 #include "integrators/newton_preconditioner.hpp"
 #include "integrators/petsc_newton.hpp"
+#include "linear/factor_kernels.hpp"
 #include "support/integrator_statistics.hpp"
 #include "support/scenes.hpp"
 #include "support/vibration.hpp"
@@ -175,6 +176,14 @@ TEST(FactorReuse, RefreshesWhenIterationsDegrade) {
   }
   EXPECT_LT(test::statistic(*gentle.integrator, "refreshes_convergence"),
             0.5 * test::statistic(*iterations.integrator, "refreshes_convergence"));
+  // A half factor is raised to single only where an iteration with a fresh factor contracts too
+  // slowly (HalfFactorTooInexactForItsMatrixIsRaisedToSingle below): not for a stale factor's
+  // slow contraction (the defaults' refreshes), nor for the iteration limit. With a contraction
+  // limit nothing meets, the first fresh factor's iteration misses it and raises, once.
+  EXPECT_EQ(test::statistic(*gentle.integrator, "factor_precision_raises"), 0);
+  EXPECT_EQ(test::statistic(*iterations.integrator, "factor_precision_raises"), 0);
+  EXPECT_EQ(test::statistic(*contraction.integrator, "factor_precision_raises"),
+            simd_kernels_available() ? 1 : 0);
 }
 
 // Every preconditioner and Krylov method solves the same steps: the same trajectory within the
@@ -341,6 +350,7 @@ TEST(FactorReuse, SinglePrecisionFactorGivesTheTrajectoryOfTheDoubleOne) {
 // the motion; measured 4.8e-8). A policy that refreshes in half again would count no raise and
 // refactorize at every step; one that raised without cause would raise in the single run too.
 TEST(FactorReuse, HalfFactorTooInexactForItsMatrixIsRaisedToSingle) {
+  if (!simd_kernels_available()) GTEST_SKIP() << "this CPU has no hardware half conversion";
   const std::string yaml =
       "time: {end: 1.0}\ngravity: [0, 0, -9.81]\nbodies:\n"
       "  - geometry: {box: {min: [0, 0, 0], max: [1.0, 0.1, 0.1]}}\n"

@@ -30,6 +30,8 @@ TEST(PetscSolver, KspViewShowsPreonlyCholeskyWithCholmod) {
   EXPECT_NE(view.find("CHOLMOD supernodal factor kept in half precision"), std::string::npos);
 }
 
+constexpr const char* kLevelsLimit = "-precond_mg_levels_ksp_max_it";
+
 // The view's level smoothers (KSP objects prefixed precond_mg_levels_) and their iteration limits.
 std::vector<int> smoother_limits(const std::string& view) {
   std::vector<int> limits;
@@ -62,10 +64,16 @@ TEST(PetscSolver, GamgSmoothsEachLevelOnceUnlessPetscOptionsSayOtherwise) {
   std::printf("gamg: %zu levels smoothed\n", ours.size());
   ASSERT_GE(ours.size(), 1u) << "no multigrid level to smooth";
   for (int limit : ours) EXPECT_EQ(limit, 1);
-  // what PETSC_OPTIONS puts in the global options database
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-precond_mg_levels_ksp_max_it", "3"), 0);
-  const std::vector<int> theirs = limits_of_a_step();
-  ASSERT_EQ(PetscOptionsClearValue(nullptr, "-precond_mg_levels_ksp_max_it"), 0);
+  // what PETSC_OPTIONS puts in the global options database, cleared again whatever happens
+  struct GlobalOption {
+    GlobalOption() { EXPECT_EQ(PetscOptionsSetValue(nullptr, kLevelsLimit, "3"), 0); }
+    ~GlobalOption() { EXPECT_EQ(PetscOptionsClearValue(nullptr, kLevelsLimit), 0); }
+  };
+  std::vector<int> theirs;
+  {
+    GlobalOption option;
+    theirs = limits_of_a_step();
+  }
   ASSERT_EQ(theirs.size(), ours.size());
   for (int limit : theirs) EXPECT_EQ(limit, 3);
 }
