@@ -175,7 +175,7 @@ bool SupernodalCholesky::factorize(const SparseSymmetric& A) {
       throw RunError("CHOLMOD: cholmod_analyze did not return a supernodal analysis");
     // The structure and the work split follow from the pattern: kept until it is analysed again.
     keep_structure(*symbolic_);
-    schedule(solve_bytes() / 2 < threaded_bytes_ ? 1 : omp_get_max_threads());
+    schedule();
   }
   // The numeric factor lives only until its values are copied: the double factor is not kept.
   cholmod_factor* factor = cholmod_copy_factor(symbolic_, &common_);
@@ -275,7 +275,8 @@ void SupernodalCholesky::keep_split_values(const double* x) {
   }
 }
 
-void SupernodalCholesky::schedule(int threads) {
+void SupernodalCholesky::schedule() {
+  const int threads = solve_bytes() / 2 < threaded_bytes_ ? 1 : omp_get_max_threads();
   const long supernodes = static_cast<long>(super_.size()) - 1;
   std::vector<long> owner(super_.back());  // supernode of each column
   for (long k = 0; k < supernodes; ++k)
@@ -366,7 +367,7 @@ bool SupernodalCholesky::raise_precision() {
   belows_half_ = {};
   column_scale_ = {};
   // single reads more bytes per solve: the split over threads is chosen again for them
-  if (symbolic_) schedule(solve_bytes() / 2 < threaded_bytes_ ? 1 : omp_get_max_threads());
+  if (symbolic_) schedule();
   return true;
 }
 

@@ -59,7 +59,8 @@ class SupernodalCholesky {
   void keep_structure(const cholmod_factor& factor);
   void keep_values(const cholmod_factor& factor);
   void keep_split_values(const double* x);
-  void schedule(int threads);
+  // The work split over the threads: one thread below threaded_bytes_ of solve_bytes() / 2.
+  void schedule();
 
   FactorPrecision precision_;
   double threaded_bytes_;

@@ -36,12 +36,13 @@ constexpr const char* kLevelsLimit = "-precond_mg_levels_ksp_max_it";
 std::vector<int> smoother_limits(const std::string& view) {
   std::vector<int> limits;
   std::istringstream lines(view);
+  const std::string limit = "maximum iterations=";
   bool level = false;
   for (std::string line; std::getline(lines, line);) {
     if (line.find("KSP Object: (precond_mg_levels_") != std::string::npos) level = true;
-    const std::size_t at = line.find("maximum iterations=");
+    const std::size_t at = line.find(limit);
     if (level && at != std::string::npos) {
-      limits.push_back(std::stoi(line.substr(at + 19)));
+      limits.push_back(std::stoi(line.substr(at + limit.size())));
       level = false;
     }
   }
