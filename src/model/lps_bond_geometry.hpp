@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "model/lps_rows.hpp"
 #include "model/model.hpp"
 
 namespace fissure {
@@ -18,7 +19,7 @@ inline BondGeometry bond_geometry(const double* y, const Particles& p, int i, in
   std::array<double, 3> d{y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1],
                           y[3 * j + 2] - y[3 * i + 2]};
   double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (length <= 1e-12 * xi) {
+  if (length <= lps::kCollapsedBond * xi) {
     d = reference_vector(p, i, j);
     length = 0;
   }

@@ -143,16 +143,14 @@ class LpsModel final : public Model, public Stiffness, public PlasticFlow {
   // plasticity: the return map computes them for the state the next evaluation starts from.
   std::vector<double> plastic_terms_y_;
   std::size_t plastic_terms_revision_ = 0;
-  // Matrix-free tangent (lps_tangent_product.cpp), recorded by linearize(): per directed bond the
-  // unit direction n and the geometric stiffness g = p/ℓ (p⁺/ℓ with clamp_compression).
-  std::vector<double> tangent_nx_, tangent_ny_, tangent_nz_, tangent_geometric_;
+  // Matrix-free tangent (lps_tangent_product.cpp), recorded by linearize(): the linearization
+  // point y (the row kernels recompute each bond's direction from it) and per directed bond the
+  // geometric stiffness g = p/ℓ (p⁺/ℓ with clamp_compression).
+  std::vector<double> tangent_y_, tangent_geometric_;
   std::vector<double> tangent_alpha_;  // V_i (κ_i + B_i m_i/9), per particle
   // What the product's second pass gathers from each neighbour: X_i = α_i P_i − γ_i Q_i and
   // Y_i = γ_i P_i per product, γ_i = V_i B_i/3 and V_i from linearize().
-  struct TangentTerms {
-    double x, y, gamma, volume;
-  };
-  mutable std::vector<TangentTerms> tangent_terms_;
+  mutable std::vector<lps::TangentTerms> tangent_terms_;
 };
 
 // material.model: lps (the default), no options of its own; plastic with material.plasticity.

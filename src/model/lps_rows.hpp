@@ -8,6 +8,9 @@
 
 namespace fissure::lps {
 
+// A bond no longer than this times |ξ| is collapsed: it has no deformed direction.
+constexpr double kCollapsedBond = 1e-12;
+
 // One row's bond arrays, each indexed by the directed bond b ∈ [begin, end).
 struct BondRow {
   int begin, end;
@@ -76,12 +79,39 @@ using ForceRow = void (*)(const ForceRowInput& in, double force[3], double* squa
 using YieldRow = bool (*)(const BondRow& row, const double* extension, double deviatoric,
                           double trial_theta, double yield_force);
 
+// The matrix-free tangent's two passes (lps_tangent_product.cpp) over row i, for a direction v at
+// the linearization point y. Each bond's unit direction n = (y_j − y_i)(1/ℓ) is recomputed, not
+// stored (bond_geometry's (y_j − y_i)/ℓ to round-off): a collapsed bond (ℓ ≤ 1e-12 |ξ|) takes
+// its reference direction (x_j − x_i)(1/|ξ|). s_b = n·(v_j − v_i).
+struct TangentTerms {
+  double x, y, gamma, volume;  // X_i = α_i P_i − γ_i Q_i, Y_i = γ_i P_i, γ_i = V_i B_i/3, V_i
+};
+struct TangentRowInput {
+  const BondRow* row;
+  int i;
+  const double* y;          // the linearization point
+  const double* reference;  // x, for collapsed bonds
+  const double* v;
+  const double* volume;       // V (the first pass)
+  const TangentTerms* terms;  // per particle (the second pass)
+  const double* geometric;    // g_b = p_b/ℓ_b per bond (the second pass)
+};
+struct TangentSums {
+  double P, Q;  // Σ_b c_ij s_b V_j and Σ_b w_ij |ξ_b| s_b V_j
+};
+using TangentSumsRow = TangentSums (*)(const TangentRowInput& in);
+// (K v)_i = Σ_b [(g_b s_b − t_ib − t_jb) n_b + g_b (v_i − v_j)] with t_ib = V_j [c_ij X_i + w_ij
+// (3γ_i s_b − |ξ_b| Y_i)] and t_jb = V_i [c_ji X_j + w_ji (3γ_j s_b − |ξ_b| Y_j)] into out[0..2].
+using TangentRow = void (*)(const TangentRowInput& in, double out[3]);
+
 struct RowKernels {
   const char* name;  // "avx512" or "portable"
   DilatationRow dilatation;
   MomentRow moment;
   ForceRow force;
   YieldRow yields;
+  TangentSumsRow tangent_sums;
+  TangentRow tangent;
 };
 
 RowKernels portable_row_kernels();

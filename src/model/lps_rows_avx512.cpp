@@ -196,13 +196,111 @@ bool yields(const BondRow& row, const double* extension, double B, double trial_
   return false;
 }
 
+// Eight bonds' n = d (1/ℓ), v_j − v_i and s = n·(v_j − v_i); false if one of them is
+// collapsed, whose row the portable kernel then takes whole (the same bits: it is rare).
+struct BondRates {
+  __m512d n0, n1, n2, dv0, dv1, dv2, s;
+};
+
+bool bond_rates(__mmask8 m, __m256i j, __m512d xi, const TangentRowInput& in, BondRates& r) {
+  const Bonds d = bond_vectors(m, j, in.y, in.y + 3 * in.i);
+  const __m512d length = _mm512_sqrt_pd(squared_length(d));
+  if (_mm512_mask_cmp_pd_mask(m, length, _mm512_mul_pd(_mm512_set1_pd(kCollapsedBond), xi),
+                              _CMP_LE_OQ))
+    return false;
+  const Bonds dv = bond_vectors(m, j, in.v, in.v + 3 * in.i);
+  const __m512d inverse = _mm512_maskz_div_pd(m, _mm512_set1_pd(1.0), length);
+  r = {_mm512_mul_pd(d.d0, inverse),
+       _mm512_mul_pd(d.d1, inverse),
+       _mm512_mul_pd(d.d2, inverse),
+       dv.d0,
+       dv.d1,
+       dv.d2,
+       _mm512_setzero_pd()};
+  r.s = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(r.n0, dv.d0), _mm512_mul_pd(r.n1, dv.d1)),
+                      _mm512_mul_pd(r.n2, dv.d2));
+  return true;
+}
+
+TangentSums tangent_sums(const TangentRowInput& in) {
+  const BondRow& row = *in.row;
+  const __m512d zero = _mm512_setzero_pd();
+  __m512d P = zero, Q = zero;
+  for (int b = row.begin; b < row.end; b += 8) {
+    prefetch(row.reference_length + b + prefetch_distance);
+    prefetch(row.neighbor + b + prefetch_distance);
+    prefetch(row.weight + b + prefetch_distance);
+    prefetch(row.deviatoric + b + prefetch_distance);
+    const __mmask8 m = lanes_left(b, row.end);
+    const __m256i j = _mm256_maskz_loadu_epi32(m, row.neighbor + b);
+    const __m512d xi = _mm512_maskz_loadu_pd(m, row.reference_length + b);
+    BondRates r;
+    if (!bond_rates(m, j, xi, in, r)) return portable_row_kernels().tangent_sums(in);
+    const __m512d sV = _mm512_mul_pd(r.s, _mm512_mask_i32gather_pd(zero, m, j, in.volume, 8));
+    P = _mm512_mask_add_pd(P, m, P, _mm512_mul_pd(widen(m, row.weight + b), sV));
+    Q = _mm512_mask_add_pd(Q, m, Q,
+                           _mm512_mul_pd(_mm512_mul_pd(widen(m, row.deviatoric + b), xi), sV));
+  }
+  return {reduce(P), reduce(Q)};
+}
+
+void tangent_row(const TangentRowInput& in, double out[3]) {
+  const BondRow& row = *in.row;
+  const double* terms = &in.terms[0].x;  // 4 doubles per particle
+  const TangentTerms& ti = in.terms[in.i];
+  const __m512d Xi = _mm512_set1_pd(ti.x), Yi = _mm512_set1_pd(ti.y),
+                three_gamma = _mm512_set1_pd(3.0 * ti.gamma), Vi = _mm512_set1_pd(ti.volume),
+                three = _mm512_set1_pd(3.0), zero = _mm512_setzero_pd();
+  __m512d o0 = zero, o1 = zero, o2 = zero;
+  for (int b = row.begin; b < row.end; b += 8) {
+    prefetch(row.reference_length + b + prefetch_distance);
+    prefetch(row.neighbor + b + prefetch_distance);
+    prefetch(row.weight + b + prefetch_distance);
+    prefetch(row.reverse_weight + b + prefetch_distance);
+    prefetch(row.deviatoric + b + prefetch_distance);
+    prefetch(row.reverse_deviatoric + b + prefetch_distance);
+    prefetch(in.geometric + b + prefetch_distance);
+    const __mmask8 m = lanes_left(b, row.end);
+    const __m256i j = _mm256_maskz_loadu_epi32(m, row.neighbor + b);
+    const __m512d xi = _mm512_maskz_loadu_pd(m, row.reference_length + b);
+    BondRates r;
+    if (!bond_rates(m, j, xi, in, r)) return portable_row_kernels().tangent(in, out);
+    const __m256i j4 = _mm256_slli_epi32(j, 2);
+    const __m512d Xj = _mm512_mask_i32gather_pd(zero, m, j4, terms, 8);
+    const __m512d Yj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 1, 8);
+    const __m512d Gj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 2, 8);
+    const __m512d Vj = _mm512_mask_i32gather_pd(zero, m, j4, terms + 3, 8);
+    const __m512d g = _mm512_maskz_loadu_pd(m, in.geometric + b);
+    const __m512d t_own =
+        _mm512_mul_pd(Vj, _mm512_add_pd(_mm512_mul_pd(widen(m, row.weight + b), Xi),
+                                        _mm512_mul_pd(widen(m, row.deviatoric + b),
+                                                      _mm512_sub_pd(_mm512_mul_pd(three_gamma, r.s),
+                                                                    _mm512_mul_pd(xi, Yi)))));
+    const __m512d t_member = _mm512_mul_pd(
+        Vi, _mm512_add_pd(_mm512_mul_pd(widen(m, row.reverse_weight + b), Xj),
+                          _mm512_mul_pd(widen(m, row.reverse_deviatoric + b),
+                                        _mm512_sub_pd(_mm512_mul_pd(_mm512_mul_pd(three, Gj), r.s),
+                                                      _mm512_mul_pd(xi, Yj)))));
+    const __m512d along = _mm512_sub_pd(_mm512_sub_pd(_mm512_mul_pd(g, r.s), t_own), t_member);
+    o0 = _mm512_mask_add_pd(o0, m, o0,
+                            _mm512_sub_pd(_mm512_mul_pd(along, r.n0), _mm512_mul_pd(g, r.dv0)));
+    o1 = _mm512_mask_add_pd(o1, m, o1,
+                            _mm512_sub_pd(_mm512_mul_pd(along, r.n1), _mm512_mul_pd(g, r.dv1)));
+    o2 = _mm512_mask_add_pd(o2, m, o2,
+                            _mm512_sub_pd(_mm512_mul_pd(along, r.n2), _mm512_mul_pd(g, r.dv2)));
+  }
+  out[0] = reduce(o0);
+  out[1] = reduce(o1);
+  out[2] = reduce(o2);
+}
+
 }  // namespace
 
 RowKernels avx512_row_kernels() {
   if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512vl") ||
       !__builtin_cpu_supports("avx512dq"))
-    return {"avx512", nullptr, nullptr, nullptr, nullptr};
-  return {"avx512", dilatation_row, moment_row, force_row, yields};
+    return {"avx512", nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+  return {"avx512", dilatation_row, moment_row, force_row, yields, tangent_sums, tangent_row};
 }
 
 }  // namespace fissure::lps
@@ -211,7 +309,9 @@ RowKernels avx512_row_kernels() {
 
 namespace fissure::lps {
 
-RowKernels avx512_row_kernels() { return {"avx512", nullptr, nullptr, nullptr, nullptr}; }
+RowKernels avx512_row_kernels() {
+  return {"avx512", nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+}
 
 }  // namespace fissure::lps
 

@@ -105,10 +105,69 @@ bool yields(const BondRow& row, const double* extension, double B, double trial_
   return false;
 }
 
+// Bond b of row i (to member j): n_b = d (1/ℓ) (bond_geometry's d/ℓ to round-off), v_j − v_i and
+// s_b = n_b·(v_j − v_i).
+struct BondRate {
+  double n[3], dv[3], s;
+};
+
+BondRate bond_rate(const TangentRowInput& in, int b, int j) {
+  const double* yi = in.y + 3 * in.i;
+  const double* yj = in.y + 3 * j;
+  const double xi = in.row->reference_length[b];
+  double d[3] = {yj[0] - yi[0], yj[1] - yi[1], yj[2] - yi[2]};
+  double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (length <= kCollapsedBond * xi) {
+    for (int k = 0; k < 3; ++k) d[k] = in.reference[3 * j + k] - in.reference[3 * in.i + k];
+    length = xi;
+  }
+  BondRate r;
+  const double inverse = 1.0 / length;  // one division instead of three
+  for (int k = 0; k < 3; ++k) {
+    r.n[k] = d[k] * inverse;
+    r.dv[k] = in.v[3 * j + k] - in.v[3 * in.i + k];
+  }
+  r.s = r.n[0] * r.dv[0] + r.n[1] * r.dv[1] + r.n[2] * r.dv[2];
+  return r;
+}
+
+TangentSums tangent_sums(const TangentRowInput& in) {
+  const BondRow& row = *in.row;
+  double P[lanes] = {}, Q[lanes] = {};
+  for (int b = row.begin; b < row.end; ++b) {
+    const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
+    const double sV = bond_rate(in, b, j).s * in.volume[j];
+    P[lane] += double(row.weight[b]) * sV;
+    Q[lane] += double(row.deviatoric[b]) * row.reference_length[b] * sV;
+  }
+  return {reduce(P), reduce(Q)};
+}
+
+void tangent_row(const TangentRowInput& in, double out[3]) {
+  const BondRow& row = *in.row;
+  const TangentTerms ti = in.terms[in.i];
+  const double three_gamma = 3.0 * ti.gamma;
+  double o[3][lanes] = {};
+  for (int b = row.begin; b < row.end; ++b) {
+    const int lane = (b - row.begin) % lanes, j = row.neighbor[b];
+    const BondRate r = bond_rate(in, b, j);
+    const TangentTerms& tj = in.terms[j];
+    const double xi = row.reference_length[b], g = in.geometric[b];
+    const double t_own = tj.volume * (double(row.weight[b]) * ti.x +
+                                      double(row.deviatoric[b]) * (three_gamma * r.s - xi * ti.y));
+    const double t_member =
+        ti.volume * (double(row.reverse_weight[b]) * tj.x +
+                     double(row.reverse_deviatoric[b]) * (3.0 * tj.gamma * r.s - xi * tj.y));
+    const double along = g * r.s - t_own - t_member;
+    for (int k = 0; k < 3; ++k) o[k][lane] += along * r.n[k] - g * r.dv[k];
+  }
+  for (int k = 0; k < 3; ++k) out[k] = reduce(o[k]);
+}
+
 }  // namespace
 
 RowKernels portable_row_kernels() {
-  return {"portable", dilatation_row, moment_row, force_row, yields};
+  return {"portable", dilatation_row, moment_row, force_row, yields, tangent_sums, tangent_row};
 }
 
 RowKernels row_kernels() {

@@ -1,6 +1,7 @@
 // The LPS row passes (model/lps_rows.hpp): the AVX-512 kernels give the portable kernels' bits on
 // every row of a tet block (rows of every length mod 8, so every tail mask), the dilatation sums
-// equal the same sums taken in bond order to round-off, and the yield test decides as the return
+// and the matrix-free tangent's sums equal the same sums taken in bond order to round-off (a
+// collapsed bond included), and the yield test decides as the return
 // map's arithmetic does at each row's threshold. A lane reduced in another order, a tail lane
 // lost or counted twice, a neighbour's term gathered from the wrong field (the portable kernel
 // reads them by name) or a term computed with other operations fails the bitwise checks.
@@ -43,8 +44,12 @@ struct Rows {
       reverse_weight.push_back(static_cast<float>(u(random)));
       plastic.push_back(b % 3 == 0 ? 0.0 : 1e-4 * u(random));
     }
-    for (int i = 0; i < p.count(); ++i)
+    for (int i = 0; i < p.count(); ++i) {
       terms.push_back({u(random), 1.0 + u(random), u(random), p.volume[i]});
+      tangent_terms.push_back({u(random), u(random), 1.0 + u(random), p.volume[i]});
+    }
+    for (std::size_t b = 0; b < bonds; ++b) geometric.push_back(u(random));
+    for (std::size_t k = 0; k < y.size(); ++k) v.push_back(u(random));
   }
   lps::BondRow row(int i) const {
     return {families.offsets[i],
@@ -60,6 +65,8 @@ struct Rows {
   std::vector<double> y, volume, plastic;
   std::vector<float> omega, reverse_omega, weight, reverse_weight;
   std::vector<lps::NeighbourTerms> terms;
+  std::vector<lps::TangentTerms> tangent_terms;
+  std::vector<double> geometric, v;  // g_b per bond, a direction per particle
 };
 
 // θ_i and the moment summed in bond order, with Σ|term| for the round-off bound.
@@ -111,6 +118,54 @@ OrderedForce bond_order_force(const Rows& r, int i) {
     for (int k = 0; k < 3; ++k) {
       s.force[k] += t * tj.volume * d[k] / length;
       s.size[k] += std::abs(t * tj.volume * d[k] / length);
+    }
+  }
+  return s;
+}
+
+// The tangent passes' sums in bond order (lps_rows.hpp), n_b = d/ℓ or, for a collapsed bond, the
+// reference direction, with Σ|term| per sum.
+struct OrderedTangent {
+  double P, P_size, Q, Q_size, out[3], out_size[3];
+};
+
+OrderedTangent bond_order_tangent(const Rows& r, const Scene& scene, int i) {
+  OrderedTangent s{};
+  const lps::BondRow row = r.row(i);
+  const lps::TangentTerms& ti = r.tangent_terms[i];
+  const double* x = scene.particles.reference.data();
+  for (int b = row.begin; b < row.end; ++b) {
+    const int j = row.neighbor[b];
+    const lps::TangentTerms& tj = r.tangent_terms[j];
+    const double xi = row.reference_length[b];
+    double d[3], length = 0;
+    for (int k = 0; k < 3; ++k) d[k] = r.y[3 * j + k] - r.y[3 * i + k];
+    length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (length <= 1e-12 * xi) {
+      for (int k = 0; k < 3; ++k) d[k] = x[3 * j + k] - x[3 * i + k];
+      length = xi;
+    }
+    double rate = 0;
+    for (int k = 0; k < 3; ++k) rate += d[k] / length * (r.v[3 * j + k] - r.v[3 * i + k]);
+    const double P = row.weight[b] * rate * r.volume[j];
+    const double Q = row.deviatoric[b] * xi * rate * r.volume[j];
+    s.P += P;
+    s.P_size += std::abs(P);
+    s.Q += Q;
+    s.Q_size += std::abs(Q);
+    const double t_own =
+        tj.volume * (row.weight[b] * ti.x + row.deviatoric[b] * (3 * ti.gamma * rate - xi * ti.y));
+    const double t_member =
+        ti.volume * (row.reverse_weight[b] * tj.x +
+                     row.reverse_deviatoric[b] * (3 * tj.gamma * rate - xi * tj.y));
+    const double g = r.geometric[b];
+    for (int k = 0; k < 3; ++k) {
+      const double term =
+          (g * rate - t_own - t_member) * d[k] / length + g * (r.v[3 * i + k] - r.v[3 * j + k]);
+      s.out[k] += term;
+      s.out_size[k] += std::abs(g * rate * d[k] / length) + std::abs(t_own * d[k] / length) +
+                       std::abs(t_member * d[k] / length) +
+                       std::abs(g * (r.v[3 * i + k] - r.v[3 * j + k]));
     }
   }
   return s;
@@ -177,6 +232,28 @@ TEST(RowKernels, Avx512GivesThePortableBitsOnEveryRow) {
             << "row " << i << " component " << k;
       }
       ASSERT_TRUE(same_bits(w_simd, w_portable)) << "row " << i;
+    }
+    // the matrix-free tangent's passes (row 1 has a collapsed bond: its reference direction)
+    const lps::TangentRowInput in{&row,
+                                  i,
+                                  r.y.data(),
+                                  scene.particles.reference.data(),
+                                  r.v.data(),
+                                  r.volume.data(),
+                                  r.tangent_terms.data(),
+                                  r.geometric.data()};
+    const lps::TangentSums sums_simd = simd.tangent_sums(in), sums = portable.tangent_sums(in);
+    ASSERT_TRUE(same_bits(sums_simd.P, sums.P) && same_bits(sums_simd.Q, sums.Q)) << "row " << i;
+    double out_simd[3], out[3];
+    simd.tangent(in, out_simd);
+    portable.tangent(in, out);
+    const OrderedTangent ordered = bond_order_tangent(r, scene, i);
+    EXPECT_LE(std::abs(sums.P - ordered.P), 1e-14 * ordered.P_size) << "row " << i;
+    EXPECT_LE(std::abs(sums.Q - ordered.Q), 1e-14 * ordered.Q_size) << "row " << i;
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_TRUE(same_bits(out_simd[k], out[k])) << "row " << i << " component " << k;
+      EXPECT_LE(std::abs(out[k] - ordered.out[k]), 1e-14 * ordered.out_size[k])
+          << "row " << i << " component " << k;
     }
     ++checked;
   }
