@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "integrators/petsc_session.hpp"
+#include "integrators/threaded_aij.hpp"
 #include "linear/blas_threads.hpp"
 #include "linear/nearest_bonds.hpp"
 #include "linear/shifted_system.hpp"
@@ -213,6 +214,8 @@ void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int blo
   petsc_check(MatSetOption(petsc_matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOption(petsc_matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE),
               "MatSetOption");
+  // assembled by the preallocation; copy_values() changes the values in place only
+  if (block_size == 3) multiply_over_threads(petsc_matrix_);
 }
 
 PetscInt NewtonPreconditioner::global_column(int c) const {
