@@ -215,7 +215,7 @@ void NewtonPreconditioner::create_petsc_matrix(const SparseSymmetric& a, int blo
   petsc_check(MatSetOption(petsc_matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE),
               "MatSetOption");
   // assembled by the preallocation; copy_values() changes the values in place only
-  if (block_size == 3) multiply_over_threads(petsc_matrix_);
+  if (block_size == 3) threaded_product_ = multiply_over_threads(petsc_matrix_);
 }
 
 PetscInt NewtonPreconditioner::global_column(int c) const {
@@ -419,6 +419,9 @@ void NewtonPreconditioner::view(PetscViewer viewer) const {
                     cholesky_->threads(), cholesky_->subtrees(), cholesky_->top_supernodes()),
                 "PetscViewerASCIIPrintf");
   } else if (factorizations > 0) {
+    if (threaded_product_)
+      petsc_check(PetscViewerASCIIPrintf(viewer, "  its matrix multiplied over the threads\n"),
+                  "PetscViewerASCIIPrintf");
     petsc_check(PCView(pc_, viewer), "PCView");
   }
 }

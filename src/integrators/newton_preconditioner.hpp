@@ -75,6 +75,7 @@ class NewtonPreconditioner {
   std::vector<char> nearest_;         // nearest: the kept bonds
   SparseSymmetric scalar_stiffness_;  // scalar: L
   bool scalar_assembled_ = false;
+  bool threaded_product_ = false;  // PETSc's matrix multiplies over the threads (threaded_aij)
   Mat petsc_matrix_ = nullptr;
   PC pc_ = nullptr;
   std::unique_ptr<SupernodalCholesky> cholesky_;

@@ -71,6 +71,7 @@ bool multiply_over_threads(Mat a) {
   petsc_check(MatRestoreRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &rows, &offsets, &columns, &done),
               "MatRestoreRowIJ");
   if (!triples || omp_get_max_threads() < 2) return false;
+  petsc_check(MatSetOption(a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   petsc_check(MatSetOperation(a, MATOP_MULT, reinterpret_cast<void (*)(void)>(multiply)),
               "MatSetOperation");
   return true;

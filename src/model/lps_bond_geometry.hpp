@@ -1,6 +1,8 @@
 #pragma once
-// The deformed geometry of a bond, shared by the assembled (lps_stiffness.cpp) and matrix-free
-// (lps_tangent_product.cpp) tangents so that both see the same n and ℓ.
+// The deformed geometry of a bond, shared by the assembled tangent (lps_stiffness.cpp) and the
+// matrix-free one's linearization (lps_tangent_product.cpp) so that both see the same ℓ and decide
+// alike which bonds are collapsed; the product's row kernels recompute n as d (1/ℓ) with the same
+// test (lps_rows.hpp), equal to this n to round-off.
 #include <array>
 #include <cmath>
 

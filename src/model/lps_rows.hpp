@@ -1,6 +1,7 @@
 #pragma once
-// The LPS model's two passes over one row of bonds (lps_model.hpp): the dilatation pass and the
-// force pass, as plain functions over the bond arrays. Each row is summed in eight lanes (bond k
+// The LPS model's passes over one row of bonds (lps_model.hpp): the dilatation pass and the force
+// pass, and the matrix-free tangent product's two passes (lps_tangent_product.cpp), as plain
+// functions over the bond arrays. Each row is summed in eight lanes (bond k
 // of the row in lane k mod 8, a lane left untouched past the row's end) and the lanes reduced as
 // (l + l+4), then (l + l+2), then (0 + 1). Two implementations give the same bits: a portable one
 // and one with AVX-512 intrinsics; the model picks at load which one runs (row_kernels()).
@@ -82,7 +83,8 @@ using YieldRow = bool (*)(const BondRow& row, const double* extension, double de
 // The matrix-free tangent's two passes (lps_tangent_product.cpp) over row i, for a direction v at
 // the linearization point y. Each bond's unit direction n = (y_j − y_i)(1/ℓ) is recomputed, not
 // stored (bond_geometry's (y_j − y_i)/ℓ to round-off): a collapsed bond (ℓ ≤ 1e-12 |ξ|) takes
-// its reference direction (x_j − x_i)(1/|ξ|). s_b = n·(v_j − v_i).
+// its reference direction (x_j − x_i)(1/|ξ|). s_b = n·(v_j − v_i). The terms are those of the
+// LPS tangent (notes §3, §6), derived in lps_tangent_product.cpp.
 struct TangentTerms {
   double x, y, gamma, volume;  // X_i = α_i P_i − γ_i Q_i, Y_i = γ_i P_i, γ_i = V_i B_i/3, V_i
 };

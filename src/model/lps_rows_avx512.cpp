@@ -210,15 +210,11 @@ bool bond_rates(__mmask8 m, __m256i j, __m512d xi, const TangentRowInput& in, Bo
     return false;
   const Bonds dv = bond_vectors(m, j, in.v, in.v + 3 * in.i);
   const __m512d inverse = _mm512_maskz_div_pd(m, _mm512_set1_pd(1.0), length);
-  r = {_mm512_mul_pd(d.d0, inverse),
-       _mm512_mul_pd(d.d1, inverse),
-       _mm512_mul_pd(d.d2, inverse),
-       dv.d0,
-       dv.d1,
-       dv.d2,
-       _mm512_setzero_pd()};
-  r.s = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(r.n0, dv.d0), _mm512_mul_pd(r.n1, dv.d1)),
-                      _mm512_mul_pd(r.n2, dv.d2));
+  const __m512d n0 = _mm512_mul_pd(d.d0, inverse), n1 = _mm512_mul_pd(d.d1, inverse),
+                n2 = _mm512_mul_pd(d.d2, inverse);
+  const __m512d s = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(n0, dv.d0), _mm512_mul_pd(n1, dv.d1)),
+                                  _mm512_mul_pd(n2, dv.d2));
+  r = {n0, n1, n2, dv.d0, dv.d1, dv.d2, s};
   return true;
 }
 

@@ -1,8 +1,9 @@
 // The PETSc Newton integrator's linear solver: a CHOLMOD Cholesky factorization applied once
-// (KSPPREONLY, the factor kept in single precision by SupernodalCholesky), verified through
-// PETSc's view of the solver; gamg's level smoothers; and the `auto`
-// tangent's fallback to `projected` where the exact tangent cannot be factorized.
+// (KSPPREONLY, the factor kept in half precision by SupernodalCholesky), verified through
+// PETSc's view of the solver; gamg's level smoothers and its finest matrix's threaded product; and
+// the `auto` tangent's fallback to `projected` where the exact tangent cannot be factorized.
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <petscsys.h>
 
 #include <sstream>
@@ -50,7 +51,8 @@ std::vector<int> smoother_limits(const std::string& view) {
 }
 
 // gamg smooths each level once (PETSc makes two sweeps: docs/integrators.md, "The linear
-// solves", for what that saves), unless PETSC_OPTIONS sets the levels' limit.
+// solves", for what that saves), unless PETSC_OPTIONS sets the levels' limit; with two threads
+// its finest matrix (the nearest members' 3×3 blocks) multiplies over them.
 TEST(PetscSolver, GamgSmoothsEachLevelOnceUnlessPetscOptionsSayOtherwise) {
   auto v = test::make_vibration();
   PetscNewtonSettings settings;
@@ -61,6 +63,17 @@ TEST(PetscSolver, GamgSmoothsEachLevelOnceUnlessPetscOptionsSayOtherwise) {
     integrator.step(*v->dynamics, s, 10 * v->stable_dt);
     return smoother_limits(integrator.solver_view());
   };
+  // the finest level's matrix multiplies over the threads (threaded_aij.hpp) where two run
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(2);
+  {
+    PetscNewton integrator(settings, "test");
+    State s = v->initial;
+    integrator.step(*v->dynamics, s, 10 * v->stable_dt);
+    EXPECT_NE(integrator.solver_view().find("its matrix multiplied over the threads"),
+              std::string::npos);
+  }
+  omp_set_num_threads(threads);
   const std::vector<int> ours = limits_of_a_step();
   std::printf("gamg: %zu levels smoothed\n", ours.size());
   ASSERT_GE(ours.size(), 1u) << "no multigrid level to smooth";

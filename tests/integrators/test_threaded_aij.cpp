@@ -1,12 +1,16 @@
 // The preconditioner matrix's threaded product (integrators/threaded_aij.hpp): installed only on
-// a MATSEQAIJ whose rows come in threes with one column pattern, and there equal, row by row to
-// round-off, to PETSc's own product of the same matrix. A product that skipped a row of a triple,
-// read another row's values or was never installed fails.
+// a MATSEQAIJ whose rows come in threes with one column pattern (not where a row is shorter, has
+// another column, or is left over, nor on another type or one thread), kept when values change
+// in place, and equal, row by row to round-off, to PETSc's own product of the same matrix. A
+// product that skipped a row of a triple, read another row's values or was never installed
+// fails.
 #include <gtest/gtest.h>
 #include <omp.h>
 #include <petscmat.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "integrators/petsc_session.hpp"
@@ -15,31 +19,42 @@
 namespace fissure {
 namespace {
 
+// What keeps a matrix's rows from coming in threes with one column pattern each.
+enum class Defect { none, shorter_row, other_column, extra_row };
+
 // A 3N×3N matrix of 3×3 blocks: block row i couples to i and to the particles i ± 1, i ± 7 and
-// i ± 40 that exist (a banded, family-like pattern), every entry different; with `broken`, the
-// last row of block row 5 loses its last entry, so that triple no longer shares one pattern.
-Mat block_matrix(int particles, bool broken) {
+// i ± 40 that exist (a banded, family-like pattern), every entry different. The defects touch
+// the last row of block row 5 (its last member is particle 45): shorter_row drops its last entry,
+// other_column moves that entry to the next column (particle 46's first, not a member), and
+// extra_row adds a row 3N with its diagonal only.
+Mat block_matrix(int particles, Defect defect) {
   std::vector<PetscInt> offsets{0}, columns;
   std::vector<PetscScalar> values;
-  for (int row = 0; row < 3 * particles; ++row) {
+  const int size = 3 * particles + (defect == Defect::extra_row);
+  for (int row = 0; row < size; ++row) {
     const int i = row / 3;
     std::vector<int> members;
     for (const int d : {-40, -7, -1, 0, 1, 7, 40})
       if (i + d >= 0 && i + d < particles) members.push_back(i + d);
+    if (row == 3 * particles) members = {};
     for (const int j : members)
       for (int c = 0; c < 3; ++c) {
-        if (broken && row == 3 * 5 + 2 && j == members.back() && c == 2) continue;
-        columns.push_back(3 * j + c);
+        const bool last = row == 3 * 5 + 2 && j == members.back() && c == 2;
+        if (last && defect == Defect::shorter_row) continue;
+        columns.push_back(3 * j + c + (last && defect == Defect::other_column));
         values.push_back(std::sin(0.37 * row + 1.3 * columns.back()) + (3 * j + c == row ? 20 : 0));
       }
+    if (row == 3 * particles) {
+      columns.push_back(row);
+      values.push_back(1.0);
+    }
     offsets.push_back(static_cast<PetscInt>(columns.size()));
   }
   Mat a;
   petsc_check(MatCreate(PETSC_COMM_SELF, &a), "MatCreate");
-  petsc_check(MatSetSizes(a, 3 * particles, 3 * particles, 3 * particles, 3 * particles),
-              "MatSetSizes");
+  petsc_check(MatSetSizes(a, size, size, size, size), "MatSetSizes");
   petsc_check(MatSetType(a, MATSEQAIJ), "MatSetType");
-  petsc_check(MatSetBlockSize(a, 3), "MatSetBlockSize");
+  if (defect != Defect::extra_row) petsc_check(MatSetBlockSize(a, 3), "MatSetBlockSize");
   petsc_check(MatSeqAIJSetPreallocationCSR(a, offsets.data(), columns.data(), values.data()),
               "MatSeqAIJSetPreallocationCSR");
   return a;
@@ -55,9 +70,10 @@ Multiply product_of(Mat a) {
 
 TEST(ThreadedAij, EqualsPetscsProductRowByRowToRoundOff) {
   ensure_petsc();
-  ASSERT_GE(omp_get_max_threads(), 2) << "the threaded product needs two threads";
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(std::max(threads, 2));  // scripts/test runs with OMP_NUM_THREADS=1
   const int particles = 1000;
-  Mat threaded = block_matrix(particles, false), petsc;
+  Mat threaded = block_matrix(particles, Defect::none), petsc;
   petsc_check(MatDuplicate(threaded, MAT_COPY_VALUES, &petsc), "MatDuplicate");
   ASSERT_TRUE(multiply_over_threads(threaded));
   EXPECT_NE(product_of(threaded), product_of(petsc)) << "PETSc's product was kept";
@@ -75,6 +91,7 @@ TEST(ThreadedAij, EqualsPetscsProductRowByRowToRoundOff) {
     values[7] += 0.5;
     petsc_check(MatSeqAIJRestoreArray(a, &values), "MatSeqAIJRestoreArray");
   }
+  EXPECT_NE(product_of(threaded), product_of(petsc)) << "lost with the values";
   petsc_check(MatMult(threaded, x, y_threaded), "MatMult");
   petsc_check(MatMult(petsc, x, y_petsc), "MatMult");
   const PetscScalar *a_values, *t, *p, *xs;
@@ -106,22 +123,31 @@ TEST(ThreadedAij, EqualsPetscsProductRowByRowToRoundOff) {
   for (Vec* v : {&x, &y_threaded, &y_petsc}) petsc_check(VecDestroy(v), "VecDestroy");
   petsc_check(MatDestroy(&threaded), "MatDestroy");
   petsc_check(MatDestroy(&petsc), "MatDestroy");
+  omp_set_num_threads(threads);
 }
 
 TEST(ThreadedAij, KeepsPetscsProductWhereRowsDoNotComeInThreesOrOneThreadRuns) {
   ensure_petsc();
-  Mat broken = block_matrix(50, true);
-  const Multiply before = product_of(broken);
-  EXPECT_FALSE(multiply_over_threads(broken));
-  EXPECT_EQ(product_of(broken), before);
-  petsc_check(MatDestroy(&broken), "MatDestroy");
-  Mat whole = block_matrix(50, false);
-  const Multiply petscs = product_of(whole);
   const int threads = omp_get_max_threads();
+  omp_set_num_threads(std::max(threads, 2));
+  for (const Defect defect : {Defect::shorter_row, Defect::other_column, Defect::extra_row}) {
+    Mat a = block_matrix(50, defect);
+    const Multiply petscs = product_of(a);
+    EXPECT_FALSE(multiply_over_threads(a)) << "defect " << int(defect);
+    EXPECT_EQ(product_of(a), petscs) << "defect " << int(defect);
+    petsc_check(MatDestroy(&a), "MatDestroy");
+  }
+  Mat whole = block_matrix(50, Defect::none), blocked;
+  petsc_check(MatConvert(whole, MATSEQBAIJ, MAT_INITIAL_MATRIX, &blocked), "MatConvert");
+  const Multiply blocks = product_of(blocked);
+  EXPECT_FALSE(multiply_over_threads(blocked)) << "not MATSEQAIJ";
+  EXPECT_EQ(product_of(blocked), blocks);
+  petsc_check(MatDestroy(&blocked), "MatDestroy");
+  const Multiply petscs = product_of(whole);
   omp_set_num_threads(1);
   EXPECT_FALSE(multiply_over_threads(whole));
-  omp_set_num_threads(threads);
   EXPECT_EQ(product_of(whole), petscs) << "one thread: PETSc's product";
+  omp_set_num_threads(threads);
   petsc_check(MatDestroy(&whole), "MatDestroy");
 }
 

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "model/lps_rows.hpp"
@@ -36,6 +37,14 @@ struct Rows {
     y[3] = y[3 * families.neighbors[families.offsets[1]]];  // a collapsed bond of row 1
     y[4] = y[3 * families.neighbors[families.offsets[1]] + 1];
     y[5] = y[3 * families.neighbors[families.offsets[1]] + 2];
+    // a bond just short enough to count as collapsed (ℓ = ½·1e-12 |ξ| > 0) and one just too long
+    // (2e-12 |ξ|), each along x from the row's first member
+    for (const auto& [i, fraction] :
+         {std::pair{p.count() / 3, 0.5e-12}, {2 * p.count() / 3, 2e-12}}) {
+      const int b = families.offsets[i], j = families.neighbors[b];
+      for (int k = 0; k < 3; ++k) y[3 * i + k] = y[3 * j + k];
+      y[3 * i] += fraction * families.reference_length[b];
+    }
     volume = p.volume;
     for (std::size_t b = 0; b < bonds; ++b) {
       omega.push_back(static_cast<float>(b % 11 == 0 ? 0.0 : 1.0 + 0.5 * u(random)));
@@ -46,7 +55,10 @@ struct Rows {
     }
     for (int i = 0; i < p.count(); ++i) {
       terms.push_back({u(random), 1.0 + u(random), u(random), p.volume[i]});
-      tangent_terms.push_back({u(random), u(random), 1.0 + u(random), p.volume[i]});
+      // V_i in the second pass's terms differs from the first pass's V (volume), so that a pass
+      // reading the other's fails
+      tangent_terms.push_back(
+          {u(random), u(random), 1.0 + u(random), p.volume[i] * (1.5 + u(random))});
     }
     for (std::size_t b = 0; b < bonds; ++b) geometric.push_back(u(random));
     for (std::size_t k = 0; k < y.size(); ++k) v.push_back(u(random));
@@ -138,9 +150,9 @@ OrderedTangent bond_order_tangent(const Rows& r, const Scene& scene, int i) {
     const int j = row.neighbor[b];
     const lps::TangentTerms& tj = r.tangent_terms[j];
     const double xi = row.reference_length[b];
-    double d[3], length = 0;
+    double d[3];
     for (int k = 0; k < 3; ++k) d[k] = r.y[3 * j + k] - r.y[3 * i + k];
-    length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (length <= 1e-12 * xi) {
       for (int k = 0; k < 3; ++k) d[k] = x[3 * j + k] - x[3 * i + k];
       length = xi;
@@ -178,6 +190,13 @@ TEST(RowKernels, Avx512GivesThePortableBitsOnEveryRow) {
   const Scene scene = test::block_scene(0.1, 0.02, 1e6, 1e6);
   const Rows r(scene);
   const int n = scene.particles.count();
+  for (const int i : {n / 3, 2 * n / 3}) {  // the two short bonds are what they should be
+    const int b = scene.families.offsets[i], j = scene.families.neighbors[b];
+    const double length = std::abs(r.y[3 * j] - r.y[3 * i]),
+                 xi = scene.families.reference_length[b];
+    ASSERT_GT(length, 0.0);
+    ASSERT_EQ(length <= 1e-12 * xi, i == n / 3) << "row " << i << ": ℓ/|ξ| " << length / xi;
+  }
   std::vector<int> lengths_mod_8(8, 0);
   long checked = 0, yielding = 0;  // rows with a bond that can yield
   for (int i = 0; i < n; ++i) {
