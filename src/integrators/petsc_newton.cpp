@@ -65,6 +65,7 @@ struct PetscNewton::Solver {
   bool factor_failed = false;        // the last refresh met a matrix not positive definite
   int iterations_since_refresh = 0;  // in the current Newton solve
   bool solve_fresh = false;  // the last linear solve's factor was made at that iteration's point
+  long contraction_refresh_step = -2;  // the step of the last refresh for a slow contraction
   std::vector<double> norms;         // |r_k| of the current Newton solve
   // |r| that round-off in the positions alone produces (residual_floor): no Newton iteration
   // can go below it, so a solve there has converged and its contraction means nothing.
@@ -219,11 +220,17 @@ PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
     // A slow contraction of an iteration whose factor was made at its own point is not
     // staleness: where that factor is in half precision, its rounding times the matrix's
     // condition is the likely cause (backward Euler at 300 explicit steps: contraction 0.48 in
-    // half, 0.009 in single), which a refresh in half would repeat. Only the contraction test
-    // says so: the iteration and Krylov limits do not measure the factor's accuracy.
-    if ((reason == Refreshes::convergence || reason == Refreshes::every_iteration) &&
-        s->solve_fresh && contracted_slowly(*s) && s->preconditioner->raise_precision())
+    // half, 0.009 in single), which a refresh in half would repeat. Nor, likely, is a slow
+    // contraction that comes back within a step of the refresh the last one caused (SDIRK4 at
+    // 25 ms on the 9,726-particle slow bend: the stages' first iterations contracted by 0.3 in
+    // half and 0.03 in single, and half refreshed at 8 stages in a row). Only the contraction
+    // test says so: the iteration and Krylov limits do not measure the factor's accuracy.
+    const bool slow = (reason == Refreshes::convergence || reason == Refreshes::every_iteration) &&
+                      contracted_slowly(*s);
+    if (slow && (s->solve_fresh || s->steps - s->contraction_refresh_step <= 1) &&
+        s->preconditioner->raise_precision())
       ++s->precision_raises;
+    if (slow) s->contraction_refresh_step = s->steps;
     s->solve_fresh = false;
     if (reason != Refreshes::none) {
       s->pending = Refreshes::none;
