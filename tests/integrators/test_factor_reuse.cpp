@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "integrators/newton_preconditioner.hpp"
@@ -339,6 +340,36 @@ TEST(FactorReuse, SinglePrecisionFactorGivesTheTrajectoryOfTheDoubleOne) {
   }
 }
 
+// The same steps of a glass bar (`yaml`; dt in explicit estimates where explicit_steps > 0) with a
+// single-precision and then a half-precision factor, their statistics printed; expects the two to
+// end within the Newton tolerance of each other (1e-7 of the motion) and hands both runs to
+// `check` while their scene lives.
+void single_and_half(
+    const std::string& yaml, PetscNewtonSettings settings, double explicit_steps, double dt,
+    int steps, const std::function<void(const Integrator& single, const Integrator& half)>& check) {
+  const Scene scene = build_scene(parse_config(yaml, "glass_bar.yaml"));
+  auto model = make_model(scene);
+  Dynamics dynamics(scene, *model);
+  if (explicit_steps > 0) dt = explicit_steps * model->stable_time_step();
+  std::vector<std::vector<double>> position;
+  std::vector<std::unique_ptr<Integrator>> runs;
+  settings.preconditioner = PetscNewtonSettings::Preconditioner::tangent;
+  for (FactorPrecision precision : {FactorPrecision::single, FactorPrecision::half}) {
+    settings.factor_precision = precision;
+    runs.push_back(make(settings));
+    State s{scene.particles.reference, scene.particles.velocity, 0};
+    for (int k = 0; k < steps; ++k) runs.back()->step(dynamics, s, dt);
+    position.push_back(s.position);
+    test::print_statistics(factor_precision_name(precision), *runs.back());
+  }
+  const double motion = test::max_difference(scene.particles.reference, position[0]);
+  const double difference = test::max_difference(position[1], position[0]);
+  std::printf("half (raised) vs single: max |dy| = %.2e of the motion (%.2e m)\n",
+              difference / motion, motion);
+  EXPECT_LT(difference, 1e-7 * motion);
+  check(*runs[0], *runs[1]);
+}
+
 // Where half's rounding, amplified by the Newton matrix's condition, spoils even a fresh factor,
 // the solver raises the factor to single once (factor_precision_raises) instead of refreshing
 // in half at every step. The case of bench_implicit_step: the glass cantilever (792 particles)
@@ -358,37 +389,19 @@ TEST(FactorReuse, HalfFactorTooInexactForItsMatrixIsRaisedToSingle) {
       "    resolution: 0.0529\n    horizon: 1.45\n"
       "    material: {density: 2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}\n"
       "constraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.0317, 1, 1]}}, fix: true}\n";
-  const Scene scene = build_scene(parse_config(yaml, "cantilever.yaml"));
-  auto model = make_model(scene);
-  Dynamics dynamics(scene, *model);
-  const double dt = 300 * model->stable_time_step();
-  const int steps = 4;
-  std::vector<std::vector<double>> position;
-  std::vector<std::unique_ptr<Integrator>> runs;
-  for (FactorPrecision precision : {FactorPrecision::single, FactorPrecision::half}) {
-    PetscNewtonSettings settings = newton("backward_euler");
-    settings.preconditioner = PetscNewtonSettings::Preconditioner::tangent;
-    settings.factor_precision = precision;
-    runs.push_back(make(settings));
-    State s{scene.particles.reference, scene.particles.velocity, 0};
-    for (int k = 0; k < steps; ++k) runs.back()->step(dynamics, s, dt);
-    position.push_back(s.position);
-    test::print_statistics(factor_precision_name(precision), *runs.back());
-  }
-  const Integrator &single = *runs[0], &half = *runs[1];
-  EXPECT_EQ(test::statistic(single, "factor_precision_raises"), 0);
-  EXPECT_EQ(test::statistic(half, "factor_precision_raises"), 1);
-  // the raise refactorizes once in the first step; from then on the runs do the same work
-  EXPECT_EQ(test::statistic(half, "factorizations"), test::statistic(single, "factorizations") + 1);
-  EXPECT_EQ(test::statistic(half, "refreshes_convergence"),
-            test::statistic(single, "refreshes_convergence") + 1);
-  EXPECT_LE(test::statistic(half, "newton_iterations"),
-            test::statistic(single, "newton_iterations") + 1);
-  const double motion = test::max_difference(scene.particles.reference, position[0]);
-  const double difference = test::max_difference(position[1], position[0]);
-  std::printf("half (raised) vs single: max |dy| = %.2e of the motion (%.2e m)\n",
-              difference / motion, motion);
-  EXPECT_LT(difference, 1e-7 * motion);
+  single_and_half(yaml, newton("backward_euler"), 300, 0, 4,
+                  [](const Integrator& single, const Integrator& half) {
+                    EXPECT_EQ(test::statistic(single, "factor_precision_raises"), 0);
+                    EXPECT_EQ(test::statistic(half, "factor_precision_raises"), 1);
+                    // the raise refactorizes once in the first step; from then on the runs do the
+                    // same work
+                    EXPECT_EQ(test::statistic(half, "factorizations"),
+                              test::statistic(single, "factorizations") + 1);
+                    EXPECT_EQ(test::statistic(half, "refreshes_convergence"),
+                              test::statistic(single, "refreshes_convergence") + 1);
+                    EXPECT_LE(test::statistic(half, "newton_iterations"),
+                              test::statistic(single, "newton_iterations") + 1);
+                  });
 }
 
 // The slowly bent glass bar of studies/slow_bend.yaml (857 particles) under SDIRK4 at 25 ms:
@@ -410,33 +423,15 @@ TEST(FactorReuse, HalfFactorRefreshedForContractionAgainWithinAStepIsRaisedToSin
       "    material: {density: 2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}\n"
       "constraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.03, 1, 1]}}, fix: true}\n"
       "  - {region: {box: {min: [0.97, -1, -1], max: [2, 1, 1]}}, velocity: [0, 0, -0.00125]}\n";
-  const Scene scene = build_scene(parse_config(yaml, "slow_bend.yaml"));
-  auto model = make_model(scene);
-  Dynamics dynamics(scene, *model);
-  const int steps = 4;
-  std::vector<std::vector<double>> position;
-  std::vector<std::unique_ptr<Integrator>> runs;
-  for (FactorPrecision precision : {FactorPrecision::single, FactorPrecision::half}) {
-    PetscNewtonSettings settings = newton("sdirk4");
-    settings.preconditioner = PetscNewtonSettings::Preconditioner::tangent;
-    settings.factor_precision = precision;
-    settings.refresh_contraction = 0.05;
-    runs.push_back(make(settings));
-    State s{scene.particles.reference, scene.particles.velocity, 0};
-    for (int k = 0; k < steps; ++k) runs.back()->step(dynamics, s, 0.025);
-    position.push_back(s.position);
-    test::print_statistics(factor_precision_name(precision), *runs.back());
-  }
-  const Integrator &single = *runs[0], &half = *runs[1];
-  EXPECT_EQ(test::statistic(single, "refreshes_convergence"), 0);
-  EXPECT_EQ(test::statistic(single, "factor_precision_raises"), 0);
-  EXPECT_EQ(test::statistic(half, "refreshes_convergence"), 2);
-  EXPECT_EQ(test::statistic(half, "factor_precision_raises"), 1);
-  const double motion = test::max_difference(scene.particles.reference, position[0]);
-  const double difference = test::max_difference(position[1], position[0]);
-  std::printf("half (raised) vs single: max |dy| = %.2e of the motion (%.2e m)\n",
-              difference / motion, motion);
-  EXPECT_LT(difference, 1e-7 * motion);
+  PetscNewtonSettings settings = newton("sdirk4");
+  settings.refresh_contraction = 0.05;
+  single_and_half(yaml, settings, 0, 0.025, 4,
+                  [](const Integrator& single, const Integrator& half) {
+                    EXPECT_EQ(test::statistic(single, "refreshes_convergence"), 0);
+                    EXPECT_EQ(test::statistic(single, "factor_precision_raises"), 0);
+                    EXPECT_EQ(test::statistic(half, "refreshes_convergence"), 2);
+                    EXPECT_EQ(test::statistic(half, "factor_precision_raises"), 1);
+                  });
 }
 
 }  // namespace
