@@ -5,7 +5,7 @@
 //   dilatation: the default model;
 //   full:       the deviatoric calibration (docs/model.md, deviation 8);
 //   fictitious: full, each family near a free face completed by mirror images of the particles
-//               across it (fictitious/fictitious_particles.hpp), each moved as the quadratic
+//               across it (model/fictitious_particles.hpp), each moved as the quadratic
 //               displacement fitted around its nearest real particle; the calibrations then run
 //               over the completed families.
 // Prints per resolution and variant: the static tip deflection under gravity over Timoshenko's
@@ -14,7 +14,7 @@
 // (power iteration, a lower bound), which the explicit stable step is inversely proportional to.
 // Dense: about 7 GB and 10 minutes at 4 tets through the thickness.
 // `lattice` instead of `mirror` fills the same shell with a cubic lattice (lattice_images).
-//   bench_fictitious_particles [tets through the thickness, e.g. 2,3,4] [fit radius / δ] [order]
+//   bench_fictitious_particles [tets through the thickness, e.g. 2,3,4] [fit radius / δ]
 //                              [mirror|lattice]
 #include <fmt/format.h>
 
@@ -26,10 +26,11 @@
 #include <string>
 #include <vector>
 
-#include "fictitious/fictitious_particles.hpp"
+#include "fictitious/lattice_images.hpp"
 #include "fictitious/linear_lps_stiffness.hpp"
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
+#include "model/fictitious_particles.hpp"
 #include "support/beam.hpp"
 
 namespace {
@@ -48,20 +49,20 @@ struct Figures {
   double largest_l1 = 0, mean_l1 = 0;
 };
 
-// The real particles followed by the mirror images, all in body 0.
-Particles extended(const Particles& real, const bench::Mirrors& mirrors) {
+// The real particles followed by the fictitious ones, all in body 0.
+Particles extended(const Particles& real, const FictitiousParticles& images) {
   Particles p = real;
-  for (int g = 0; g < mirrors.count(); ++g) {
-    p.reference.insert(p.reference.end(), &mirrors.position[3 * g], &mirrors.position[3 * g + 3]);
+  for (int g = 0; g < images.count(); ++g) {
+    p.reference.insert(p.reference.end(), &images.position[3 * g], &images.position[3 * g + 3]);
     p.velocity.insert(p.velocity.end(), {0.0, 0.0, 0.0});
-    p.volume.push_back(mirrors.volume[g]);
+    p.volume.push_back(images.volume[g]);
     p.mass.push_back(0);
     p.body.push_back(0);
   }
   return p;
 }
 
-Figures run(int tets, Variant variant, double fit_radius, int order, bool lattice) {
+Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
   const double resolution = Cantilever::side / tets, gravity = 9.81;
   const Scene scene = test::cantilever_scene(resolution, gravity);
   const Particles& real = scene.particles;
@@ -70,21 +71,22 @@ Figures run(int tets, Variant variant, double fit_radius, int order, bool lattic
   Figures f;
   f.particles = n;
 
-  bench::Mirrors mirrors;
-  bench::Extrapolation extrapolation;
+  FictitiousParticles images;
   if (variant == Variant::fictitious) {
     const bench::BoxFaces box{{-1.45 * resolution, 0, 0},
                               {Cantilever::length, Cantilever::side, Cantilever::side},
                               {{1, 0}, {1, 1}, {2, 0}, {2, 1}, {0, 1}}};
-    mirrors =
-        lattice ? bench::lattice_images(real, box, delta) : bench::mirror_images(real, box, delta);
-    extrapolation = bench::extrapolation(real, mirrors, delta, fit_radius, order);
-    f.images = mirrors.count(), f.largest_l1 = extrapolation.largest_l1;
-    f.mean_l1 = extrapolation.mean_l1;
+    if (lattice)
+      images = bench::lattice_images(real, box, delta);
+    else
+      add_mirror_images(real, 0, bench::free_face_triangles(box), delta, images);
+    fit_stencils(real, scene.horizon_of_body, fit_radius, images);
+    const auto [largest, mean] = stencil_amplification(images);
+    f.images = images.count(), f.largest_l1 = largest, f.mean_l1 = mean;
   }
-  const Particles particles = extended(real, mirrors);
+  const Particles particles = extended(real, images);
   const Families families =
-      mirrors.count() ? build_families(particles, scene.horizon_of_body) : scene.families;
+      images.count() ? build_families(particles, scene.horizon_of_body) : scene.families;
   const auto& off = families.offsets;
   std::vector<float> omega(families.directed_bonds());
   std::vector<double> m(particles.count(), 0.0);
@@ -108,7 +110,7 @@ Figures run(int tets, Variant variant, double fit_radius, int order, bool lattic
     if (real.reference[3 * i] >= 0) dof[i] = free++;
   const bench::LinearLps lps{particles, families, n, c, w, m, Cantilever::bulk, Cantilever::shear};
   Eigen::MatrixXd K = bench::linear_lps_stiffness(
-      lps, variant == Variant::fictitious ? &extrapolation : nullptr, dof, 3 * free);
+      lps, variant == Variant::fictitious ? &images : nullptr, dof, 3 * free);
   Eigen::VectorXd mass(3 * free), load = Eigen::VectorXd::Zero(3 * free);
   for (int i = 0; i < n; ++i)
     if (dof[i] >= 0) {
@@ -174,12 +176,10 @@ int main(int argc, char** argv) {
     for (std::string item; std::getline(list, item, ',');) tets.push_back(std::atoi(item.c_str()));
   }
   const double fit_radius = argc > 2 ? std::atof(argv[2]) : 1.5;
-  const int order = argc > 3 ? std::atoi(argv[3]) : 2;
-  const std::string images = argc > 4 ? argv[4] : "mirror";
-  if (tets.empty() || fit_radius <= 0 || (order != 1 && order != 2) ||
-      (images != "mirror" && images != "lattice")) {
+  const std::string images = argc > 3 ? argv[3] : "mirror";
+  if (tets.empty() || fit_radius <= 0 || (images != "mirror" && images != "lattice")) {
     fmt::print(stderr,
-               "usage: bench_fictitious_particles [2,3,4] [fit radius > 0] [order 1|2] "
+               "usage: bench_fictitious_particles [2,3,4] [fit radius / horizon > 0] "
                "[mirror|lattice]\n");
     return 2;
   }
@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
     double full_highest = 0;
     for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious}) {
       const auto start = std::chrono::steady_clock::now();
-      const Figures f = run(t, v, fit_radius, order, images == "lattice");
+      const Figures f = run(t, v, fit_radius, images == "lattice");
       if (v == Variant::full) full_highest = f.highest_frequency;
       fmt::print(
           "{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:17.4f}  {:20.4f}  {:27.3f}  {:15.2f}  {:14.2f}  "

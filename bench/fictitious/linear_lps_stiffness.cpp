@@ -2,7 +2,7 @@
 
 namespace fissure::bench {
 
-Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const Extrapolation* extrapolation,
+Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const FictitiousParticles* images,
                                      const std::vector<int>& dof, int dofs) {
   const auto& off = lps.families.offsets;
   const auto& member = lps.families.neighbors;
@@ -28,8 +28,8 @@ Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const Extrapolation* 
           touch(j);
         } else {
           const int g = j - lps.real;
-          for (int s = extrapolation->offsets[g]; s < extrapolation->offsets[g + 1]; ++s)
-            touch(extrapolation->particle[s]);
+          for (int s = images->offsets[g]; s < images->offsets[g + 1]; ++s)
+            touch(images->particle[s]);
         }
       }
       const int columns = 3 * static_cast<int>(nodes.size()), bonds = off[i + 1] - off[i];
@@ -45,10 +45,9 @@ Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const Extrapolation* 
           continue;
         }
         const int g = j - lps.real;
-        for (int s = extrapolation->offsets[g]; s < extrapolation->offsets[g + 1]; ++s)
+        for (int s = images->offsets[g]; s < images->offsets[g + 1]; ++s)
           for (int a = 0; a < 3; ++a)
-            extension(r, 3 * local_of[extrapolation->particle[s]] + a) +=
-                extrapolation->weight[s] * n[a];
+            extension(r, 3 * local_of[images->particle[s]] + a) += images->weight[s] * n[a];
       }
       Eigen::RowVectorXd dilatation = Eigen::RowVectorXd::Zero(columns);  // θ_i
       for (int b = off[i]; b < off[i + 1]; ++b)

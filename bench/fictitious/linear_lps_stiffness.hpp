@@ -3,13 +3,13 @@
 // bench_fictitious_particles: Π = Σ_i V_i W_i over the rows of the real particles i < real,
 //   W_i = ½κθ_i² + ½B_i Σ_j w_ij ê_ij² V_j,  θ_i = Σ_j c_ij e_ij V_j,  ê_ij = e_ij − θ_i|ξ|/3,
 //   e_ij = ξ̂·(u_j − u_i),  B_i = 15μ/m_i,
-// where members j ≥ real are fictitious particles moved by `extrapolation` (none: no such
-// members). Rows and columns are the degrees of freedom dof[i] ≥ 0 of the real particles
+// where members j ≥ real are the fictitious particles `images`, moved by their stencils (none:
+// no such members). Rows and columns are the degrees of freedom dof[i] ≥ 0 of the real particles
 // (−1: held at zero).
 #include <Eigen/Dense>
 #include <vector>
 
-#include "fictitious/fictitious_particles.hpp"
+#include "model/fictitious_particles.hpp"
 #include "scene/particles.hpp"
 
 namespace fissure::bench {
@@ -24,7 +24,7 @@ struct LinearLps {
   double bulk, shear;
 };
 
-Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const Extrapolation* extrapolation,
+Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const FictitiousParticles* images,
                                      const std::vector<int>& dof, int dofs);
 
 }  // namespace fissure::bench

@@ -5,29 +5,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <nanoflann.hpp>
 #include <numeric>
 #include <stdexcept>
 
 #include "scene/particles.hpp"
+#include "scene/point_cloud.hpp"
 
 namespace fissure {
 
 namespace {
-
-struct PointCloud {
-  const std::vector<double>& xyz;
-  std::size_t kdtree_get_point_count() const { return xyz.size() / 3; }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return xyz[3 * i + dim]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<
-    nanoflann::L2_Simple_Adaptor<double, PointCloud, double, std::uint32_t>, PointCloud, 3,
-    std::uint32_t>;
 
 std::uint64_t spread_bits(std::uint64_t v) {
   v &= 0x1fffff;

@@ -1,0 +1,166 @@
+// Fictitious particles (model/fictitious_particles.hpp; issue 15): mirror images of a block's
+// particles across its faces, and the stencils that move them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "model/fictitious_particles.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+constexpr double kSize = 0.2, kLambda = 0.04;
+
+// The 12 triangles of the box [0, size]³.
+std::vector<Triangle> box_triangles(double size) {
+  std::vector<Triangle> triangles;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      auto corner = [&](int a, int b) {
+        std::array<double, 3> p;
+        p[axis] = side * size, p[u] = a * size, p[v] = b * size;
+        return p;
+      };
+      const auto p00 = corner(0, 0), p10 = corner(1, 0), p11 = corner(1, 1), p01 = corner(0, 1);
+      triangles.push_back({p00[0], p00[1], p00[2], p10[0], p10[1], p10[2], p11[0], p11[1], p11[2]});
+      triangles.push_back({p00[0], p00[1], p00[2], p11[0], p11[1], p11[2], p01[0], p01[1], p01[2]});
+    }
+  return triangles;
+}
+
+double distance_to_box(const double* x, double size) {
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double e = std::max({-x[a], 0.0, x[a] - size});
+    d2 += e * e;
+  }
+  return std::sqrt(d2);
+}
+
+double distance(const double* a, const double* b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                   (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Every image lies outside the block, within δ of a particle, and at least half the mean
+// spacing from every particle and every other image; each face, edge and corner region gets
+// images (single, double and triple reflections). Reflecting across a wrong plane puts images
+// inside, skipping pairs or triples leaves the edge or corner regions empty, and a missing
+// check of the kept images lets a corner's reflections in two orders fall on one point.
+TEST(FictitiousParticles, MirrorImagesOfABlockLieOutsideWithinAHorizonAndApart) {
+  const Scene scene = test::block_scene(kSize, kLambda, 1e6, 1e6);
+  const Particles& p = scene.particles;
+  const double delta = scene.horizon_of_body[0];
+  FictitiousParticles images;
+  add_mirror_images(p, 0, box_triangles(kSize), delta, images);
+  ASSERT_GT(images.count(), 0);
+  double mean_volume = 0;
+  for (double v : p.volume) mean_volume += v / p.count();
+  const double gap = 0.5 * std::cbrt(mean_volume);
+
+  int outside_count[3] = {0, 0, 0};  // images beyond 1, 2 and 3 faces
+  double nearest_particle_min = INFINITY, nearest_particle_max = 0, nearest_image = INFINITY;
+  for (int g = 0; g < images.count(); ++g) {
+    const double* x = &images.position[3 * g];
+    EXPECT_GT(distance_to_box(x, kSize), 0) << "image " << g << " inside the block";
+    int beyond = 0;
+    for (int a = 0; a < 3; ++a) beyond += x[a] < 0 || x[a] > kSize;
+    if (beyond > 0) ++outside_count[beyond - 1];
+    double nearest = INFINITY;
+    for (int i = 0; i < p.count(); ++i)
+      nearest = std::min(nearest, distance(x, &p.reference[3 * i]));
+    nearest_particle_min = std::min(nearest_particle_min, nearest);
+    nearest_particle_max = std::max(nearest_particle_max, nearest);
+    for (int h = 0; h < g; ++h)
+      nearest_image = std::min(nearest_image, distance(x, &images.position[3 * h]));
+    EXPECT_EQ(images.body[g], 0);
+  }
+  EXPECT_GE(nearest_particle_min, gap);
+  EXPECT_LT(nearest_particle_max, delta);
+  EXPECT_GE(nearest_image, gap);
+  EXPECT_GT(outside_count[0], 0);
+  EXPECT_GT(outside_count[1], 0);
+  EXPECT_GT(outside_count[2], 0);
+  std::printf("%d particles, %d images: %d beyond a face, %d beyond an edge, %d beyond a corner\n",
+              p.count(), images.count(), outside_count[0], outside_count[1], outside_count[2]);
+}
+
+// A stencil moves its image as the quadratic displacement fitted around its particles: its
+// weights sum to 1 and it reproduces every quadratic displacement field to round-off (relative
+// to the field's size), so that rigid motions move images rigidly. A linear fit, or a basis
+// term missing or wrongly scaled, misses the random quadratic field by far more.
+TEST(FictitiousParticles, StencilsReproduceEveryQuadraticDisplacement) {
+  const Scene scene = test::block_scene(kSize, kLambda, 1e6, 1e6);
+  const Particles& p = scene.particles;
+  FictitiousParticles images;
+  add_mirror_images(p, 0, box_triangles(kSize), scene.horizon_of_body[0], images);
+  fit_stencils(p, scene.horizon_of_body, 1.5, images);
+  ASSERT_EQ(static_cast<int>(images.offsets.size()), images.count() + 1);
+
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coefficient(-1, 1);
+  double a[3], H[9], G[18];  // u_r = a_r + H_rc x_c + ½ G_r(cd) x_c x_d (upper triangle)
+  for (double& v : a) v = coefficient(random);
+  for (double& v : H) v = coefficient(random);
+  for (double& v : G) v = coefficient(random) / kSize;
+  auto field = [&](const double* x, int r) {
+    double u = a[r];
+    for (int c = 0; c < 3; ++c) u += H[3 * r + c] * x[c];
+    int k = 0;
+    for (int c = 0; c < 3; ++c)
+      for (int d = c; d < 3; ++d) u += (c == d ? 0.5 : 1.0) * G[6 * r + k++] * x[c] * x[d];
+    return u;
+  };
+  double worst = 0, worst_sum = 0;
+  for (int g = 0; g < images.count(); ++g) {
+    double sum = 0;
+    for (int s = images.offsets[g]; s < images.offsets[g + 1]; ++s) sum += images.weight[s];
+    worst_sum = std::max(worst_sum, std::abs(sum - 1));
+    for (int r = 0; r < 3; ++r) {
+      double u = 0;
+      for (int s = images.offsets[g]; s < images.offsets[g + 1]; ++s)
+        u += images.weight[s] * field(&p.reference[3 * images.particle[s]], r);
+      worst = std::max(worst, std::abs(u - field(&images.position[3 * g], r)));
+    }
+  }
+  const auto [largest, mean] = stencil_amplification(images);
+  std::printf(
+      "%d stencils: largest error %.2e, weights' sum off by %.2e; sum |weight| %.2f mean, "
+      "%.2f largest\n",
+      images.count(), worst, worst_sum, mean, largest);
+  EXPECT_LT(worst_sum, 1e-11);
+  EXPECT_LT(worst, 1e-10);  // the field is of order 1 over the block
+  EXPECT_GE(mean, 1.0);
+}
+
+// Too few particles for a quadratic fit: a clear error naming the particle, not a NaN stencil.
+TEST(FictitiousParticles, TooFewParticlesForTheFitIsAnError) {
+  Particles p;
+  for (int i = 0; i < 6; ++i) {
+    p.reference.insert(p.reference.end(), {0.01 * i, 0.005 * (i % 2), 0.0});
+    p.velocity.insert(p.velocity.end(), {0.0, 0.0, 0.0});
+    p.volume.push_back(1e-6);
+    p.mass.push_back(1e-3);
+    p.body.push_back(0);
+  }
+  FictitiousParticles images;
+  images.position = {0.0, 0.0, -0.01};
+  images.volume = {1e-6};
+  images.body = {0};
+  try {
+    fit_stencils(p, {0.03}, 1.5, images);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("around particle 0 cannot be fitted"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fissure
