@@ -110,7 +110,7 @@ int run(int argc, char** argv) {
     fmt::print("particles {}\n", n);
     fmt::print("particles_per_rank {:.0f}\n", double(n) / ranks);
     fmt::print("largest_bonds_per_rank {:.0f}\n", results[5]);
-    fmt::print("largest_kept_bonds_per_rank {:.0f}\n", results[6]);  // own and ghost rows
+    fmt::print("largest_kept_bonds_per_rank {:.0f}\n", results[6]);      // own and ghost rows
     fmt::print("largest_kept_particles_per_rank {:.0f}\n", results[7]);  // own and ghosts
     fmt::print("setup_seconds {:.2f}\n", results[4]);
     fmt::print("seconds_per_step {:.5f}\n", results[0]);

@@ -15,7 +15,8 @@
 // Dense: about 7 GB and 10 minutes at 4 tets through the thickness.
 // `lattice` instead of `mirror` fills the same shell with a cubic lattice (lattice_images).
 //   bench_fictitious_particles [tets through the thickness, e.g. 2,3,4] [fit radius / δ]
-//                              [mirror|lattice]
+//                              [mirror|lattice|bending]
+// `bending` prints instead the energy of pure bending of a free bar (see bending()).
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -32,6 +33,7 @@
 #include "model/dilatation_calibration.hpp"
 #include "model/fictitious_particles.hpp"
 #include "support/beam.hpp"
+#include "support/scenes.hpp"
 
 namespace {
 
@@ -45,7 +47,7 @@ const char* name(Variant v) {
 
 struct Figures {
   int particles = 0, images = 0;
-  double static_ratio = 0, frequency_ratio = 0, highest_frequency = 0;
+  double static_ratio = 0, beyond_clamp_ratio = 0, frequency_ratio = 0, highest_frequency = 0;
   double largest_l1 = 0, mean_l1 = 0;
 };
 
@@ -62,47 +64,70 @@ Particles extended(const Particles& real, const FictitiousParticles& images) {
   return p;
 }
 
+// A scene's particles with the variant's fictitious particles (beyond the box's free faces) and
+// weights over the families they complete.
+struct Discretisation {
+  FictitiousParticles images;
+  Particles particles;  // real, then fictitious
+  Families families;
+  std::vector<float> c, w;
+  std::vector<double> m;
+};
+
+Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxFaces& box,
+                          double fit_radius, bool lattice) {
+  const Particles& real = scene.particles;
+  const double delta = scene.horizon_of_body[0];
+  Discretisation d;
+  if (variant == Variant::fictitious) {
+    if (lattice)
+      d.images = bench::lattice_images(real, box, delta);
+    else
+      add_mirror_images(real, 0, bench::free_face_triangles(box), delta, d.images);
+    fit_stencils(real, scene.horizon_of_body, fit_radius, d.images);
+  }
+  d.particles = extended(real, d.images);
+  d.families =
+      d.images.count() ? build_families(d.particles, scene.horizon_of_body) : scene.families;
+  const auto& off = d.families.offsets;
+  std::vector<float> omega(d.families.directed_bonds());
+  d.m.assign(d.particles.count(), 0.0);
+  for (int i = 0; i < d.particles.count(); ++i)
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const double length = d.families.reference_length[b];
+      omega[b] = static_cast<float>(delta / length);  // Eq 5
+      d.m[i] += double(omega[b]) * length * length * d.particles.volume[d.families.neighbors[b]];
+    }
+  d.c = dilatation_weights(d.particles, d.families, omega, d.m);
+  d.w = omega;
+  if (variant != Variant::dilatation)
+    d.w = deviatoric_weights(d.particles, d.families, omega,
+                             std::vector<double>(d.particles.count(), Cantilever::shear), d.m,
+                             {isotropic_deviatoric_shape()})
+              .weights;
+  return d;
+}
+
 Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
   const double resolution = Cantilever::side / tets, gravity = 9.81;
   const Scene scene = test::cantilever_scene(resolution, gravity);
   const Particles& real = scene.particles;
   const int n = real.count();
-  const double delta = scene.horizon_of_body[0];
   Figures f;
   f.particles = n;
-
-  FictitiousParticles images;
-  if (variant == Variant::fictitious) {
-    const bench::BoxFaces box{{-1.45 * resolution, 0, 0},
-                              {Cantilever::length, Cantilever::side, Cantilever::side},
-                              {{1, 0}, {1, 1}, {2, 0}, {2, 1}, {0, 1}}};
-    if (lattice)
-      images = bench::lattice_images(real, box, delta);
-    else
-      add_mirror_images(real, 0, bench::free_face_triangles(box), delta, images);
-    fit_stencils(real, scene.horizon_of_body, fit_radius, images);
+  const bench::BoxFaces box{{-1.45 * resolution, 0, 0},
+                            {Cantilever::length, Cantilever::side, Cantilever::side},
+                            {{1, 0}, {1, 1}, {2, 0}, {2, 1}, {0, 1}}};
+  const Discretisation d = discretise(scene, variant, box, fit_radius, lattice);
+  const FictitiousParticles& images = d.images;
+  if (images.count()) {
     const auto [largest, mean] = stencil_amplification(images);
     f.images = images.count(), f.largest_l1 = largest, f.mean_l1 = mean;
   }
-  const Particles particles = extended(real, images);
-  const Families families =
-      images.count() ? build_families(particles, scene.horizon_of_body) : scene.families;
-  const auto& off = families.offsets;
-  std::vector<float> omega(families.directed_bonds());
-  std::vector<double> m(particles.count(), 0.0);
-  for (int i = 0; i < particles.count(); ++i)
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double length = families.reference_length[b];
-      omega[b] = static_cast<float>(delta / length);  // Eq 5
-      m[i] += double(omega[b]) * length * length * particles.volume[families.neighbors[b]];
-    }
-  const std::vector<float> c = dilatation_weights(particles, families, omega, m);
-  std::vector<float> w = omega;
-  if (variant != Variant::dilatation)
-    w = deviatoric_weights(particles, families, omega,
-                           std::vector<double>(particles.count(), Cantilever::shear), m,
-                           {isotropic_deviatoric_shape()})
-            .weights;
+  const Particles& particles = d.particles;
+  const Families& families = d.families;
+  const std::vector<float>&c = d.c, &w = d.w;
+  const std::vector<double>& m = d.m;
 
   std::vector<int> dof(n, -1);
   int free = 0;
@@ -147,6 +172,16 @@ Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
   const double theory = test::euler_bernoulli_deflection(q, E, x) +
                         q * (L * x - 0.5 * x * x) / (ks * Cantilever::shear * A);
   f.static_ratio = sum_w / tip / theory;
+  std::vector<double> xs, ws;
+  for (int i = 0; i < n; ++i)
+    if (dof[i] >= 0) xs.push_back(real.reference[3 * i]), ws.push_back(-u(3 * dof[i] + 2));
+  f.beyond_clamp_ratio = test::deflection_over_theory_beyond_clamp(
+      xs, ws,
+      [&](double s) {
+        return test::euler_bernoulli_deflection(q, E, s) +
+               q * (L * s - 0.5 * s * s) / (ks * Cantilever::shear * A);
+      },
+      0.25, 0.9);
 
   // first bending frequency: inverse iteration z = K⁻¹Mv, ω² = zᵀMv / zᵀMz
   for (int i = 0; i < n; ++i)
@@ -166,6 +201,49 @@ Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
   return f;
 }
 
+// Pure bending of a free 0.4 × 0.1 × 0.1 m bar (every face free), by Saint-Venant's solution
+// u_x = κxz, u_y = −νκyz, u_z = −κ(x² + ν(z² − y²))/2 about its centre: the energy the model
+// stores over ½EIκ² per length, the bending stiffness without clamp, load or tip, and the
+// particles' own quadrature Σ V_i ½Eκ²z_i² over the same.
+void bending(const std::vector<int>& tets, double fit_radius) {
+  const double length = 0.4, side = Cantilever::side, curvature = 1e-3;
+  const double E = test::youngs_modulus(Cantilever::bulk, Cantilever::shear);
+  const double nu = test::poisson_ratio(Cantilever::bulk, Cantilever::shear);
+  const double continuum = 0.5 * E * std::pow(side, 4) / 12 * curvature * curvature * length;
+  fmt::print(
+      "tets  lambda_m  variant     particles  images  energy/continuum  quadrature/continuum\n");
+  for (int t : tets) {
+    const Scene scene = test::block_scene({.size = {length, side, side},
+                                           .resolution = side / t,
+                                           .bulk = Cantilever::bulk,
+                                           .shear = Cantilever::shear});
+    const bench::BoxFaces box{
+        {0, 0, 0}, {length, side, side}, {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}}};
+    double quadrature = 0;
+    for (int i = 0; i < scene.particles.count(); ++i)
+      quadrature += scene.particles.volume[i] * 0.5 * E * curvature * curvature *
+                    std::pow(scene.particles.reference[3 * i + 2] - 0.5 * side, 2);
+    for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious}) {
+      const Discretisation d = discretise(scene, v, box, fit_radius, false);
+      std::vector<double> u(d.particles.reference.size());
+      for (int i = 0; i < d.particles.count(); ++i) {
+        const double x = d.particles.reference[3 * i] - 0.5 * length;
+        const double y = d.particles.reference[3 * i + 1] - 0.5 * side;
+        const double z = d.particles.reference[3 * i + 2] - 0.5 * side;
+        u[3 * i] = curvature * x * z;
+        u[3 * i + 1] = -nu * curvature * y * z;
+        u[3 * i + 2] = -0.5 * curvature * (x * x + nu * (z * z - y * y));
+      }
+      const bench::LinearLps lps{d.particles, d.families,       scene.particles.count(), d.c, d.w,
+                                 d.m,         Cantilever::bulk, Cantilever::shear};
+      fmt::print("{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:16.4f}  {:20.4f}\n", t, side / t, name(v),
+                 scene.particles.count(), d.images.count(),
+                 bench::linear_lps_energy(lps, u) / continuum, quadrature / continuum);
+      std::fflush(stdout);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -177,14 +255,19 @@ int main(int argc, char** argv) {
   }
   const double fit_radius = argc > 2 ? std::atof(argv[2]) : 1.5;
   const std::string images = argc > 3 ? argv[3] : "mirror";
-  if (tets.empty() || fit_radius <= 0 || (images != "mirror" && images != "lattice")) {
+  if (images == "bending") {
+    bending(tets, fit_radius);
+    return 0;
+  }
+  if (tets.empty() || fit_radius <= 0 ||
+      (images != "mirror" && images != "lattice" && images != "bending")) {
     fmt::print(stderr,
                "usage: bench_fictitious_particles [2,3,4] [fit radius / horizon > 0] "
-               "[mirror|lattice]\n");
+               "[mirror|lattice|bending]\n");
     return 2;
   }
   fmt::print(
-      "tets  lambda_m  variant     particles  images  static/timoshenko  "
+      "tets  lambda_m  variant     particles  images  static/timoshenko  beyond_clamp/timoshenko  "
       "frequency/timoshenko  highest_frequency_over_full  stencil_l1_mean  stencil_l1_max  "
       "seconds\n");
   for (int t : tets) {
@@ -194,11 +277,12 @@ int main(int argc, char** argv) {
       const Figures f = run(t, v, fit_radius, images == "lattice");
       if (v == Variant::full) full_highest = f.highest_frequency;
       fmt::print(
-          "{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:17.4f}  {:20.4f}  {:27.3f}  {:15.2f}  {:14.2f}  "
+          "{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:17.4f}  {:23.4f}  {:20.4f}  {:27.3f}  {:15.2f}  "
+          "{:14.2f}  "
           "{:7.1f}\n",
           t, Cantilever::side / t, name(v), f.particles, f.images, f.static_ratio,
-          f.frequency_ratio, full_highest > 0 ? f.highest_frequency / full_highest : NAN, f.mean_l1,
-          f.largest_l1,
+          f.beyond_clamp_ratio, f.frequency_ratio,
+          full_highest > 0 ? f.highest_frequency / full_highest : NAN, f.mean_l1, f.largest_l1,
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       std::fflush(stdout);
     }

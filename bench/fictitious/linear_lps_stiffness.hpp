@@ -24,6 +24,10 @@ struct LinearLps {
   double bulk, shear;
 };
 
+// The same energy Π at displacements u of every particle, real and fictitious (3 each): what a
+// field the stencils reproduce exactly (a quadratic one) stores, without the stencils.
+double linear_lps_energy(const LinearLps& lps, const std::vector<double>& u);
+
 Eigen::MatrixXd linear_lps_stiffness(const LinearLps& lps, const FictitiousParticles* images,
                                      const std::vector<int>& dof, int dofs);
 

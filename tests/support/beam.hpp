@@ -72,4 +72,34 @@ inline double euler_bernoulli_deflection(double q, double E, double x) {
   return q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);
 }
 
+// The factor c of the least-squares fit w ≈ a + b x + c theory(x) to the samples (x, w) with x
+// in [from, to]: the deflection over the theory's once a rigid offset and rotation, which a
+// compliant clamp adds, are taken out (issue 15).
+template <class Theory>
+double deflection_over_theory_beyond_clamp(const std::vector<double>& x,
+                                           const std::vector<double>& w, Theory theory, double from,
+                                           double to) {
+  double A[3][4] = {};  // normal equations [NᵀN | Nᵀw], N = (1, x, theory(x))
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (x[k] < from || x[k] > to) continue;
+    const double n[3] = {1.0, x[k], theory(x[k])};
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) A[r][c] += n[r] * n[c];
+      A[r][3] += n[r] * w[k];
+    }
+  }
+  for (int p = 0; p < 3; ++p)  // Gaussian elimination; NᵀN is positive definite
+    for (int r = p + 1; r < 3; ++r) {
+      const double f = A[r][p] / A[p][p];
+      for (int c = p; c < 4; ++c) A[r][c] -= f * A[p][c];
+    }
+  double coefficient[3];
+  for (int r = 2; r >= 0; --r) {
+    double sum = A[r][3];
+    for (int c = r + 1; c < 3; ++c) sum -= A[r][c] * coefficient[c];
+    coefficient[r] = sum / A[r][r];
+  }
+  return coefficient[2];
+}
+
 }  // namespace fissure::test
