@@ -64,10 +64,10 @@ double observed_order(double d23, double d34) {
 // r = w/theory falls through 1 as λ shrinks (likely a soft clamp at the coarsest λ against the
 // stiffening surface effect); further runs at λ = 0.028 and 0.020 m gave 0.960 and 0.953, a
 // plateau, not a return to 1. 3D elasticity gives r = 0.994 for this clamp
-// (bench_fem_cantilever, quadratic tets). Asserted instead: the discrete solution converges, i.e. the
-// change of r shrinks at each refinement (its observed order is printed, not asserted), and
-// the finest is within 5% of theory, the bound of test_cantilever.cpp (surface effect at 2.8
-// horizons across: up to 9.6% stiffer in uniaxial stress, docs/model.md).
+// (bench_fem_cantilever, quadratic tets). Asserted instead: the discrete solution converges, i.e.
+// the change of r shrinks at each refinement (its observed order is printed, not asserted), and the
+// finest is within 5% of theory, the bound of test_cantilever.cpp (surface effect at 2.8 horizons
+// across: up to 9.6% stiffer in uniaxial stress, docs/model.md).
 TEST(CantileverConvergence, StaticDeflectionConvergesWithResolution) {
   const double thickness = Cantilever::side;
   double ratio[3];
