@@ -83,10 +83,12 @@ class ImageGrid {
 };
 
 // The distinct faces of the boundary within δ of x: the plane of the nearest triangle of each,
-// nearest first; a triangle whose normal is within kSameFaceCosine of an accepted face's is
-// part of that face.
+// nearest first. A triangle is part of an accepted face when their planes are parallel within
+// kSameFaceCosine (either orientation) and its closest point lies within `thickness` of that
+// face's plane; the two faces of a plate thinner than 2δ stay distinct.
 std::vector<Plane> faces_near(const Vec3& x, const std::vector<Triangle>& boundary,
-                              const KdTree& centroids, double search_radius, double horizon) {
+                              const KdTree& centroids, double search_radius, double horizon,
+                              double thickness) {
   std::vector<std::pair<std::uint32_t, double>> matches;
   centroids.radiusSearch(x.data(), search_radius * search_radius, matches,
                          nanoflann::SearchParams(32, 0, false));
@@ -105,7 +107,9 @@ std::vector<Plane> faces_near(const Vec3& x, const std::vector<Triangle>& bounda
   std::vector<Plane> faces;
   for (const auto& [distance, plane] : candidates) {
     bool same = false;
-    for (const Plane& f : faces) same = same || f.normal.dot(plane.normal) > kSameFaceCosine;
+    for (const Plane& f : faces)
+      same = same || (std::abs(f.normal.dot(plane.normal)) > kSameFaceCosine &&
+                      std::abs((plane.point - f.point).dot(f.normal)) < thickness);
     if (!same) faces.push_back(plane);
   }
   return faces;
@@ -149,7 +153,8 @@ void add_mirror_images(const Particles& particles, int body, const std::vector<T
     if (particles.body[s] != body) continue;
     const Vec3 x(particles.reference[3 * s], particles.reference[3 * s + 1],
                  particles.reference[3 * s + 2]);
-    const std::vector<Plane> faces = faces_near(x, boundary, triangles, horizon + reach, horizon);
+    const std::vector<Plane> faces =
+        faces_near(x, boundary, triangles, horizon + reach, horizon, gap);
     const int count = std::min<int>(static_cast<int>(faces.size()), 3);
     for (int subset = 1; subset < (1 << count); ++subset) {
       Vec3 image = x;

@@ -26,10 +26,11 @@ struct FictitiousParticles {
   int count() const { return static_cast<int>(volume.size()); }
 };
 
-// Faces of the boundary near one particle whose normals differ by less than this angle are one
-// face (a curved surface's triangles); more, and the particle sits at an edge or a corner, whose
-// images are reflected across both faces in turn. 20°: a sphere's triangles within δ of a
-// particle differ by about δ/R, a box's faces by 90°.
+// Faces of the boundary near one particle whose planes are parallel within this angle and lie
+// within half a particle spacing of each other are one face (a curved surface's triangles);
+// otherwise the particle sits at an edge or a corner, or in a thin plate, and its images are
+// reflected across both faces in turn. 20°: a sphere's triangles within δ of a particle differ
+// by about δ/R, a box's faces by 90° (or 0° and a plate's thickness for opposite ones).
 constexpr double kSameFaceCosine = 0.9396926207859084;  // cos 20°
 
 // Adds mirror images of the particles of `body`: each particle within δ of `boundary` is
