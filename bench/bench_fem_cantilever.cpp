@@ -47,15 +47,7 @@ struct Result {
   double end_ratio, band_ratio, beyond_clamp_ratio;
 };
 
-double timoshenko(double x) {
-  const double g = 9.81, A = Cantilever::side * Cantilever::side;
-  const double E = test::youngs_modulus(Cantilever::bulk, Cantilever::shear);
-  const double ks =
-      test::shear_coefficient(test::poisson_ratio(Cantilever::bulk, Cantilever::shear));
-  const double q = Cantilever::density * g * A, L = Cantilever::length;
-  return test::euler_bernoulli_deflection(q, E, x) +
-         q * (L * x - 0.5 * x * x) / (ks * Cantilever::shear * A);
-}
+double timoshenko(double x) { return test::timoshenko_deflection(9.81, x); }
 
 Result solve(int n) {
   const int nx = 10 * n, ny = n, nz = n;

@@ -160,28 +160,16 @@ Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
         fmt::format("{}: the stiffness is not positive definite", name(variant)));
   const Eigen::VectorXd u = llt.solve(load);
 
-  const double E = test::youngs_modulus(Cantilever::bulk, Cantilever::shear);
-  const double ks =
-      test::shear_coefficient(test::poisson_ratio(Cantilever::bulk, Cantilever::shear));
-  const double A = Cantilever::side * Cantilever::side, L = Cantilever::length;
   double sum_x = 0, sum_w = 0;
   int tip = 0;
   for (int i : test::tip_particles(real, resolution))
     sum_x += real.reference[3 * i], sum_w -= u(3 * dof[i] + 2), ++tip;
-  const double x = sum_x / tip, q = Cantilever::density * gravity * A;
-  const double theory = test::euler_bernoulli_deflection(q, E, x) +
-                        q * (L * x - 0.5 * x * x) / (ks * Cantilever::shear * A);
-  f.static_ratio = sum_w / tip / theory;
+  f.static_ratio = sum_w / tip / test::timoshenko_deflection(gravity, sum_x / tip);
   std::vector<double> xs, ws;
   for (int i = 0; i < n; ++i)
     if (dof[i] >= 0) xs.push_back(real.reference[3 * i]), ws.push_back(-u(3 * dof[i] + 2));
   f.beyond_clamp_ratio = test::deflection_over_theory_beyond_clamp(
-      xs, ws,
-      [&](double s) {
-        return test::euler_bernoulli_deflection(q, E, s) +
-               q * (L * s - 0.5 * s * s) / (ks * Cantilever::shear * A);
-      },
-      0.25, 0.9);
+      xs, ws, [gravity](double s) { return test::timoshenko_deflection(gravity, s); }, 0.25, 0.9);
 
   // first bending frequency: inverse iteration z = K⁻¹Mv, ω² = zᵀMv / zᵀMz
   for (int i = 0; i < n; ++i)
@@ -193,11 +181,7 @@ Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
     omega2 = z.dot(Mv) / z.dot(mass.cwiseProduct(z));
     v = z / z.norm();
   }
-  const double I = std::pow(Cantilever::side, 4) / 12, beta = 1.8751040687 / L;
-  const double euler_bernoulli = beta * beta * std::sqrt(E * I / (Cantilever::density * A));
-  const double timoshenko =
-      euler_bernoulli * (1 - 0.5 * beta * beta * I / A * (1 + E / (ks * Cantilever::shear)));
-  f.frequency_ratio = std::sqrt(omega2) / timoshenko;
+  f.frequency_ratio = std::sqrt(omega2) / test::timoshenko_first_frequency();
   return f;
 }
 

@@ -72,6 +72,36 @@ inline double euler_bernoulli_deflection(double q, double E, double x) {
   return q * x * x * (6 * L * L - 4 * L * x + x * x) / (24 * E * I);
 }
 
+// Euler–Bernoulli plus Timoshenko's shear deflection at x of the cantilever under its own weight
+// in `gravity`: q x²(6L² − 4Lx + x²)/(24 EI) + q (Lx − x²/2)/(k_s μ A), q = ρ g A, k_s Cowper's.
+inline double timoshenko_deflection(double gravity, double x) {
+  using C = Cantilever;
+  const double A = C::side * C::side, q = C::density * gravity * A;
+  const double ks = shear_coefficient(poisson_ratio(C::bulk, C::shear));
+  return euler_bernoulli_deflection(q, youngs_modulus(C::bulk, C::shear), x) +
+         q * (C::length * x - 0.5 * x * x) / (ks * C::shear * A);
+}
+
+// The cantilever's first bending frequency [rad/s]: Euler–Bernoulli, ω1 = (β1L)² √(EI/(ρAL⁴))
+// with β1L = 1.8751, and Timoshenko's to first order in (β1 r)², r² = I/A (rotary inertia and
+// shear, Timoshenko 1921): ω1 [1 − ½ (β1 r)² (1 + E/(k_s μ))].
+constexpr double kFirstModeBetaL = 1.8751040687;
+inline double euler_bernoulli_first_frequency() {
+  using C = Cantilever;
+  const double A = C::side * C::side, I = std::pow(C::side, 4) / 12;
+  return kFirstModeBetaL * kFirstModeBetaL *
+         std::sqrt(youngs_modulus(C::bulk, C::shear) * I /
+                   (C::density * A * std::pow(C::length, 4)));
+}
+inline double timoshenko_first_frequency() {
+  using C = Cantilever;
+  const double beta_r_squared =
+      kFirstModeBetaL * kFirstModeBetaL / (C::length * C::length) * std::pow(C::side, 2) / 12;
+  const double ks = shear_coefficient(poisson_ratio(C::bulk, C::shear));
+  return euler_bernoulli_first_frequency() *
+         (1 - 0.5 * beta_r_squared * (1 + youngs_modulus(C::bulk, C::shear) / (ks * C::shear)));
+}
+
 // The factor c of the least-squares fit w ≈ a + b x + c theory(x) to the samples (x, w) with x
 // in [from, to]: the deflection over the theory's once a rigid offset and rotation, which a
 // compliant clamp adds, are taken out (issue 15).

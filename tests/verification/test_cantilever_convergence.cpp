@@ -25,7 +25,6 @@ struct Deflection {
 // The mean vertical displacement of the particles within one resolution of the free end, and
 // the theory at their mean x.
 Deflection static_tip_deflection(double resolution, const std::string& material = "") {
-  using C = Cantilever;
   const double gravity = 9.81;
   const Scene scene = test::cantilever_scene(resolution, gravity, material);
   auto model = make_model(scene);
@@ -34,13 +33,7 @@ Deflection static_tip_deflection(double resolution, const std::string& material 
   const State s = test::static_equilibrium(dynamics, test::at_rest(p));
 
   const auto [x, w] = test::tip_deflection(p, s.position, resolution);
-  const double L = C::length, E = test::youngs_modulus(C::bulk, C::shear);
-  const double ks = test::shear_coefficient(test::poisson_ratio(C::bulk, C::shear));
-  const double A = C::side * C::side;
-  const double q = C::density * gravity * A;
-  const double bending = test::euler_bernoulli_deflection(q, E, x);
-  const double shear = q * (L * x - 0.5 * x * x) / (ks * C::shear * A);
-  return {p.count(), x, w, bending + shear};
+  return {p.count(), x, w, test::timoshenko_deflection(gravity, x)};
 }
 
 // The order p of a sequence r(λ) = r* + C λ^p from three resolutions λ = b/2, b/3, b/4:

@@ -19,7 +19,7 @@ using test::Cantilever;
 
 // Euler–Bernoulli first mode of a cantilever, φ(s) = cosh βs − cos βs − σ(sinh βs − sin βs),
 // σ = (cosh βL + cos βL) / (sinh βL + sin βL), and its slope φ'(s); φ(L) = 2.
-constexpr double kBetaL = 1.8751040687;
+constexpr double kBetaL = test::kFirstModeBetaL;
 
 double mode_sigma() {
   return (std::cosh(kBetaL) + std::cos(kBetaL)) / (std::sinh(kBetaL) + std::sin(kBetaL));
@@ -83,13 +83,8 @@ TEST(CantileverFrequency, FirstBendingModeMatchesBeamTheory) {
     return sum / tip.size();
   };
 
-  const double E = test::youngs_modulus(C::bulk, C::shear);
-  const double nu = test::poisson_ratio(C::bulk, C::shear);
-  const double A = C::side * C::side, I = std::pow(C::side, 4) / 12, L = C::length;
-  const double omega_eb = kBetaL * kBetaL * std::sqrt(E * I / (C::density * A * std::pow(L, 4)));
-  const double beta_r_squared = kBetaL * kBetaL / (L * L) * I / A;
-  const double omega_t =
-      omega_eb * (1 - 0.5 * beta_r_squared * (1 + E / (test::shear_coefficient(nu) * C::shear)));
+  const double omega_eb = test::euler_bernoulli_first_frequency();
+  const double omega_t = test::timoshenko_first_frequency();
   const double period_eb = 2 * M_PI / omega_eb;
 
   const double dt = 0.9 * model->stable_time_step();
