@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include "scene/point_cloud.hpp"
 
 namespace fissure::bench {
 
@@ -55,6 +58,9 @@ FictitiousParticles lattice_images(const Particles& particles, const BoxFaces& b
           return true;
     return false;
   };
+  const PointCloud cloud{particles.reference};
+  KdTree points(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  points.buildIndex();
   FictitiousParticles lattice;
   int steps[3];
   for (int a = 0; a < 3; ++a)
@@ -67,13 +73,10 @@ FictitiousParticles lattice_images(const Particles& particles, const BoxFaces& b
         for (int a = 0; a < 3; ++a) x[a] = box.min[a] - horizon + (index[a] + 0.5) * spacing;
         const double d2 = squared_distance_to_box(x, box);
         if (d2 == 0 || d2 >= horizon * horizon || !beyond(x, true) || beyond(x, false)) continue;
-        double nearest = INFINITY;
-        for (int p = 0; p < particles.count(); ++p) {
-          double r2 = 0;
-          for (int a = 0; a < 3; ++a) r2 += std::pow(particles.reference[3 * p + a] - x[a], 2);
-          nearest = std::min(nearest, r2);
-        }
-        if (nearest < 0.25 * spacing * spacing) continue;
+        std::uint32_t nearest;
+        double squared;
+        points.knnSearch(x, 1, &nearest, &squared);
+        if (squared < 0.25 * spacing * spacing) continue;
         lattice.position.insert(lattice.position.end(), x, x + 3);
         lattice.volume.push_back(mean_volume);
         lattice.body.push_back(0);

@@ -9,25 +9,29 @@ double linear_lps_energy(const LinearLps& lps, const std::vector<double>& u) {
   const auto& x = lps.particles.reference;
   const auto& volume = lps.particles.volume;
   double energy = 0;
-#pragma omp parallel for reduction(+ : energy) schedule(dynamic, 64)
-  for (int i = 0; i < lps.real; ++i) {
-    std::vector<double> e(off[i + 1] - off[i]);
-    double theta = 0;  // θ_i = Σ_j c_ij e_ij V_j
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const int j = member[b];
-      double s = 0;  // e_ij = ξ̂·(u_j − u_i)
-      for (int a = 0; a < 3; ++a)
-        s += (x[3 * j + a] - x[3 * i + a]) * (u[3 * j + a] - u[3 * i + a]);
-      e[b - off[i]] = s / length[b];
-      theta += double(lps.dilatation_weight[b]) * e[b - off[i]] * volume[j];
+#pragma omp parallel reduction(+ : energy)
+  {
+    std::vector<double> e;  // e_ij of one row, reused
+#pragma omp for schedule(dynamic, 64)
+    for (int i = 0; i < lps.real; ++i) {
+      e.resize(off[i + 1] - off[i]);
+      double theta = 0;  // θ_i = Σ_j c_ij e_ij V_j
+      for (int b = off[i]; b < off[i + 1]; ++b) {
+        const int j = member[b];
+        double s = 0;  // e_ij = ξ̂·(u_j − u_i)
+        for (int a = 0; a < 3; ++a)
+          s += (x[3 * j + a] - x[3 * i + a]) * (u[3 * j + a] - u[3 * i + a]);
+        e[b - off[i]] = s / length[b];
+        theta += double(lps.dilatation_weight[b]) * e[b - off[i]] * volume[j];
+      }
+      double deviatoric = 0;  // Σ_j w_ij ê_ij² V_j, ê = e − θ|ξ|/3
+      for (int b = off[i]; b < off[i + 1]; ++b) {
+        const double hat = e[b - off[i]] - theta * length[b] / 3;
+        deviatoric += double(lps.deviatoric_weight[b]) * hat * hat * volume[member[b]];
+      }
+      const double B = lps.weighted_volume[i] > 0 ? 15 * lps.shear / lps.weighted_volume[i] : 0;
+      energy += volume[i] * (0.5 * lps.bulk * theta * theta + 0.5 * B * deviatoric);
     }
-    double deviatoric = 0;  // Σ_j w_ij ê_ij² V_j, ê = e − θ|ξ|/3
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double hat = e[b - off[i]] - theta * length[b] / 3;
-      deviatoric += double(lps.deviatoric_weight[b]) * hat * hat * volume[member[b]];
-    }
-    const double B = lps.weighted_volume[i] > 0 ? 15 * lps.shear / lps.weighted_volume[i] : 0;
-    energy += volume[i] * (0.5 * lps.bulk * theta * theta + 0.5 * B * deviatoric);
   }
   return energy;
 }

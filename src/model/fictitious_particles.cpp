@@ -224,10 +224,10 @@ void fit_stencils(const Particles& particles, const std::vector<double>& horizon
       const Vec3 d = Vec3(particles.reference[3 * j], particles.reference[3 * j + 1],
                           particles.reference[3 * j + 2]) -
                      xk;
-      const Eigen::Matrix<double, 9, 1> phi =
-          horizon / d.norm() * particles.volume[j] * basis(d);  // ω V_j φ
-      moments += phi * basis(d).transpose();
-      rows.push_back({j, phi});
+      const Eigen::Matrix<double, 9, 1> phi = basis(d);
+      const Eigen::Matrix<double, 9, 1> weighted = horizon / d.norm() * particles.volume[j] * phi;
+      moments += weighted * phi.transpose();  // Σ ω V_j φ φᵀ
+      rows.push_back({j, weighted});
     }
     const Eigen::LDLT<Eigen::Matrix<double, 9, 9>> fit(moments);
     if (rows.size() < 9 || fit.info() != Eigen::Success || !fit.isPositive() ||
