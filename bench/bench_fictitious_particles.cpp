@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "fictitious/clamped_images.hpp"
 #include "fictitious/lattice_images.hpp"
 #include "fictitious/linear_lps_stiffness.hpp"
 #include "model/deviatoric_calibration.hpp"
@@ -40,9 +41,17 @@ namespace {
 using namespace fissure;
 using test::Cantilever;
 
-enum class Variant { dilatation, full, fictitious };
+// second: fictitious with the second-order correction (linear_lps_stiffness.hpp)
+enum class Variant { dilatation, full, fictitious, second };
+// How the fictitious variant completes the families: mirror images beyond the free faces, a
+// lattice there, or mirror images beyond every face, the clamp face's clamped (clamp_stencils)
+// instead of a held block behind it.
+enum class Images { mirror, lattice, clamped };
 const char* name(Variant v) {
-  return v == Variant::dilatation ? "dilatation" : v == Variant::full ? "full" : "fictitious";
+  return v == Variant::dilatation ? "dilatation"
+         : v == Variant::full     ? "full"
+         : v == Variant::second   ? "second"
+                                  : "fictitious";
 }
 
 struct Figures {
@@ -50,6 +59,29 @@ struct Figures {
   double static_ratio = 0, beyond_clamp_ratio = 0, frequency_ratio = 0, highest_frequency = 0;
   double largest_l1 = 0, mean_l1 = 0;
 };
+
+// M_i = ∫ (x − x_i)(x − x_i)ᵀ over particle i's tet = V/20 Σ_a d_a d_aᵀ, d_a its corners from
+// its barycentre x_i (xx, yy, zz, xy, xz, yz); the scene must keep its tet mesh.
+std::vector<std::array<double, 6>> cell_moments(const Scene& scene) {
+  std::vector<std::array<double, 6>> moments(scene.particles.count());
+  for (const BodyTetMesh& body : scene.tet_meshes)
+    for (int t = 0; t < body.mesh.tet_count(); ++t) {
+      const int i = body.particle[t];
+      if (i < 0) continue;
+      std::array<double, 6> m{};
+      for (int c = 0; c < 4; ++c) {
+        double d[3];
+        for (int a = 0; a < 3; ++a)
+          d[a] = body.mesh.vertices[3 * body.mesh.tets[4 * t + c] + a] -
+                 scene.particles.reference[3 * i + a];
+        m[0] += d[0] * d[0], m[1] += d[1] * d[1], m[2] += d[2] * d[2];
+        m[3] += d[0] * d[1], m[4] += d[0] * d[2], m[5] += d[1] * d[2];
+      }
+      for (double& v : m) v *= scene.particles.volume[i] / 20;
+      moments[i] = m;
+    }
+  return moments;
+}
 
 // The real particles followed by the fictitious ones, all in body 0.
 Particles extended(const Particles& real, const FictitiousParticles& images) {
@@ -75,16 +107,17 @@ struct Discretisation {
 };
 
 Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxFaces& box,
-                          double fit_radius, bool lattice) {
+                          double fit_radius, Images kind) {
   const Particles& real = scene.particles;
   const double delta = scene.horizon_of_body[0];
   Discretisation d;
-  if (variant == Variant::fictitious) {
-    if (lattice)
+  if (variant == Variant::fictitious || variant == Variant::second) {
+    if (kind == Images::lattice)
       d.images = bench::lattice_images(real, box, delta);
     else
       add_mirror_images(real, 0, bench::free_face_triangles(box), delta, d.images);
     fit_stencils(real, scene.horizon_of_body, fit_radius, d.images);
+    if (kind == Images::clamped) bench::clamp_stencils(real, delta, fit_radius, 0.0, d.images);
   }
   d.particles = extended(real, d.images);
   d.families =
@@ -108,17 +141,27 @@ Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxF
   return d;
 }
 
-Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
+Figures run(int tets, Variant variant, double fit_radius, Images kind) {
   const double resolution = Cantilever::side / tets, gravity = 9.81;
-  const Scene scene = test::cantilever_scene(resolution, gravity);
+  // clamped: the beam alone, x ≥ 0, its clamp face x = 0 a face with images behind it
+  const bool clamped = kind == Images::clamped;
+  const Scene scene =
+      clamped ? test::block_scene({.size = {Cantilever::length, Cantilever::side, Cantilever::side},
+                                   .resolution = resolution,
+                                   .bulk = Cantilever::bulk,
+                                   .shear = Cantilever::shear,
+                                   .scene = "output: {surface: true}\n"})
+              : test::cantilever_scene(resolution, gravity, "", "output: {surface: true}\n");
   const Particles& real = scene.particles;
   const int n = real.count();
   Figures f;
   f.particles = n;
-  const bench::BoxFaces box{{-1.45 * resolution, 0, 0},
+  const bench::BoxFaces box{{clamped ? 0.0 : -1.45 * resolution, 0, 0},
                             {Cantilever::length, Cantilever::side, Cantilever::side},
                             {{1, 0}, {1, 1}, {2, 0}, {2, 1}, {0, 1}}};
-  const Discretisation d = discretise(scene, variant, box, fit_radius, lattice);
+  bench::BoxFaces faces = box;
+  if (clamped) faces.free.push_back({0, 0});
+  const Discretisation d = discretise(scene, variant, faces, fit_radius, kind);
   const FictitiousParticles& images = d.images;
   if (images.count()) {
     const auto [largest, mean] = stencil_amplification(images);
@@ -133,9 +176,19 @@ Figures run(int tets, Variant variant, double fit_radius, bool lattice) {
   int free = 0;
   for (int i = 0; i < n; ++i)
     if (real.reference[3 * i] >= 0) dof[i] = free++;
-  const bench::LinearLps lps{particles, families, n, c, w, m, Cantilever::bulk, Cantilever::shear};
-  Eigen::MatrixXd K = bench::linear_lps_stiffness(
-      lps, variant == Variant::fictitious ? &images : nullptr, dof, 3 * free);
+  const auto moments =
+      variant == Variant::second ? cell_moments(scene) : std::vector<std::array<double, 6>>{};
+  const bench::LinearLps lps{particles,
+                             families,
+                             n,
+                             c,
+                             w,
+                             m,
+                             Cantilever::bulk,
+                             Cantilever::shear,
+                             moments.empty() ? nullptr : &moments};
+  Eigen::MatrixXd K =
+      bench::linear_lps_stiffness(lps, images.count() ? &images : nullptr, dof, 3 * free);
   Eigen::VectorXd mass(3 * free), load = Eigen::VectorXd::Zero(3 * free);
   for (int i = 0; i < n; ++i)
     if (dof[i] >= 0) {
@@ -200,15 +253,17 @@ void bending(const std::vector<int>& tets, double fit_radius) {
     const Scene scene = test::block_scene({.size = {length, side, side},
                                            .resolution = side / t,
                                            .bulk = Cantilever::bulk,
-                                           .shear = Cantilever::shear});
+                                           .shear = Cantilever::shear,
+                                           .scene = "output: {surface: true}\n"});
+    const auto moments = cell_moments(scene);
     const bench::BoxFaces box{
         {0, 0, 0}, {length, side, side}, {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}}};
     double quadrature = 0;
     for (int i = 0; i < scene.particles.count(); ++i)
       quadrature += scene.particles.volume[i] * 0.5 * E * curvature * curvature *
                     std::pow(scene.particles.reference[3 * i + 2] - 0.5 * side, 2);
-    for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious}) {
-      const Discretisation d = discretise(scene, v, box, fit_radius, false);
+    for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious, Variant::second}) {
+      const Discretisation d = discretise(scene, v, box, fit_radius, Images::mirror);
       std::vector<double> u(d.particles.reference.size());
       for (int i = 0; i < d.particles.count(); ++i) {
         const double x = d.particles.reference[3 * i] - 0.5 * length;
@@ -218,8 +273,15 @@ void bending(const std::vector<int>& tets, double fit_radius) {
         u[3 * i + 1] = -nu * curvature * y * z;
         u[3 * i + 2] = -0.5 * curvature * (x * x + nu * (z * z - y * y));
       }
-      const bench::LinearLps lps{d.particles, d.families,       scene.particles.count(), d.c, d.w,
-                                 d.m,         Cantilever::bulk, Cantilever::shear};
+      const bench::LinearLps lps{d.particles,
+                                 d.families,
+                                 scene.particles.count(),
+                                 d.c,
+                                 d.w,
+                                 d.m,
+                                 Cantilever::bulk,
+                                 Cantilever::shear,
+                                 v == Variant::second ? &moments : nullptr};
       fmt::print("{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:16.4f}  {:20.4f}\n", t, side / t, name(v),
                  scene.particles.count(), d.images.count(),
                  bench::linear_lps_energy(lps, u) / continuum, quadrature / continuum);
@@ -244,21 +306,26 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (tets.empty() || fit_radius <= 0 ||
-      (images != "mirror" && images != "lattice" && images != "bending")) {
+      (images != "mirror" && images != "lattice" && images != "clamped")) {
     fmt::print(stderr,
                "usage: bench_fictitious_particles [2,3,4] [fit radius / horizon > 0] "
-               "[mirror|lattice|bending]\n");
+               "[mirror|lattice|clamped|bending]\n");
     return 2;
   }
+  const Images kind = images == "lattice"   ? Images::lattice
+                      : images == "clamped" ? Images::clamped
+                                            : Images::mirror;
   fmt::print(
       "tets  lambda_m  variant     particles  images  static/timoshenko  beyond_clamp/timoshenko  "
       "frequency/timoshenko  highest_frequency_over_full  stencil_l1_mean  stencil_l1_max  "
       "seconds\n");
   for (int t : tets) {
     double full_highest = 0;
-    for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious}) {
+    for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious, Variant::second}) {
+      // without a held block only the images hold the beam; the second order needs its cells
+      if (kind == Images::clamped && v != Variant::fictitious && v != Variant::second) continue;
       const auto start = std::chrono::steady_clock::now();
-      const Figures f = run(t, v, fit_radius, images == "lattice");
+      const Figures f = run(t, v, fit_radius, kind);
       if (v == Variant::full) full_highest = f.highest_frequency;
       fmt::print(
           "{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:17.4f}  {:23.4f}  {:20.4f}  {:27.3f}  {:15.2f}  "

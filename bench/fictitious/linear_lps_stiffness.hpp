@@ -6,7 +6,16 @@
 // where members j ≥ real are the fictitious particles `images`, moved by their stencils (none:
 // no such members). Rows and columns are the degrees of freedom dof[i] ≥ 0 of the real particles
 // (−1: held at zero).
+//
+// With cell_moment (second order, issue 15): each row's extensions lose the second-order part
+// of the displacement fitted over its family, e_ij − ξ̂·Q_i(ξ) with u_j − u_i ≈ H_i ξ + Q_i(ξ)
+// (Q quadratic; the fit of fictitious_particles.hpp, weights ω V_j), so that a quadratic
+// displacement gives row i the homogeneous strain at x_i; and the energy gains the cell's share
+// of the fitted strain gradient, ½ Σ_kl M_kl ∂_kε : C : ∂_lε with M = ∫_cell (x − x_i)(x − x_i)ᵀ
+// (the particle's tet about its barycentre). A quadratic displacement then stores exactly the
+// continuum's energy of the cells. Still a sum of squares.
 #include <Eigen/Dense>
+#include <array>
 #include <vector>
 
 #include "model/fictitious_particles.hpp"
@@ -22,6 +31,8 @@ struct LinearLps {
   const std::vector<float>& deviatoric_weight;  // w_ij
   const std::vector<double>& weighted_volume;   // m_i
   double bulk, shear;
+  // M_i per real particle (xx, yy, zz, xy, xz, yz); null: first order (the model's energy)
+  const std::vector<std::array<double, 6>>* cell_moment = nullptr;
 };
 
 // The same energy Π at displacements u of every particle, real and fictitious (3 each): what a

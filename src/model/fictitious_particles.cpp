@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "model/quadratic_fit.hpp"
 #include "scene/point_cloud.hpp"
 
 namespace fissure {
@@ -207,42 +208,31 @@ void fit_stencils(const Particles& particles, const std::vector<double>& horizon
     const Vec3 xk(particles.reference[3 * k], particles.reference[3 * k + 1],
                   particles.reference[3 * k + 2]);
     points.radiusSearch(xk.data(), radius * radius, matches, nanoflann::SearchParams(32, 0, false));
-    // basis φ(ξ/δ) = (ξ, ½ξ_x², ½ξ_y², ½ξ_z², ξ_xξ_y, ξ_xξ_z, ξ_yξ_z) over δ and δ², whose
-    // entries are then of one size
-    auto basis = [horizon](const Vec3& xi) {
-      const Vec3 d = xi / horizon;
-      Eigen::Matrix<double, 9, 1> phi;
-      phi << d[0], d[1], d[2], 0.5 * d[0] * d[0], 0.5 * d[1] * d[1], 0.5 * d[2] * d[2], d[0] * d[1],
-          d[0] * d[2], d[1] * d[2];
-      return phi;
-    };
-    Eigen::Matrix<double, 9, 9> moments = Eigen::Matrix<double, 9, 9>::Zero();
-    std::vector<std::pair<int, Eigen::Matrix<double, 9, 1>>> rows;
+    std::vector<int> members;
+    std::vector<Vec3> xi;
+    std::vector<double> weight;
     for (const auto& m : matches) {
       const int j = static_cast<int>(m.first);
       if (j == k || particles.body[j] != body) continue;
       const Vec3 d = Vec3(particles.reference[3 * j], particles.reference[3 * j + 1],
                           particles.reference[3 * j + 2]) -
                      xk;
-      const Eigen::Matrix<double, 9, 1> phi = basis(d);
-      const Eigen::Matrix<double, 9, 1> weighted = horizon / d.norm() * particles.volume[j] * phi;
-      moments += weighted * phi.transpose();  // Σ ω V_j φ φᵀ
-      rows.push_back({j, weighted});
+      members.push_back(j), xi.push_back(d),
+          weight.push_back(horizon / d.norm() * particles.volume[j]);
     }
-    const Eigen::LDLT<Eigen::Matrix<double, 9, 9>> fit(moments);
-    if (rows.size() < 9 || fit.info() != Eigen::Success || !fit.isPositive() ||
-        fit.vectorD().minCoeff() <= 1e-12 * fit.vectorD().maxCoeff()) {
+    std::vector<QuadraticBasis> a;
+    if (!quadratic_fit(xi, weight, horizon, a)) {
       failure[g] = fmt::format(
           "the displacement around particle {} cannot be fitted: {} particles of its body within "
           "{:.3g} m (a quadratic needs 9 spread in 3 dimensions)",
-          k, rows.size(), radius);
+          k, members.size(), radius);
       continue;
     }
-    const Eigen::Matrix<double, 9, 1> z = fit.solve(basis(x - xk));
+    const QuadraticBasis at_image = quadratic_basis(x - xk, horizon);
     double sum = 0;
-    for (const auto& [j, phi] : rows) {
-      const double w = phi.dot(z);
-      stencil[g].push_back({j, w});
+    for (std::size_t r = 0; r < members.size(); ++r) {
+      const double w = a[r].dot(at_image);
+      stencil[g].push_back({members[r], w});
       sum += w;
     }
     stencil[g].push_back({k, 1 - sum});  // u_g = u_k + Σ_j w_j (u_j − u_k)

@@ -27,17 +27,19 @@ struct Cantilever {
   static constexpr double bulk = 5.0e8, shear = 3.0e8;
 };
 
-// `material` is appended to the material map, e.g. ", surface_correction: full".
-inline Scene cantilever_scene(double resolution, double gravity, const std::string& material = "") {
+// `material` is appended to the material map, e.g. ", surface_correction: full", and `extra` to
+// the scene, e.g. "output: {surface: true}\n".
+inline Scene cantilever_scene(double resolution, double gravity, const std::string& material = "",
+                              const std::string& extra = "") {
   using C = Cantilever;
   const double anchor = 1.45 * resolution;
   const std::string yaml = fmt::format(
       "time: {{end: 1.0}}\ngravity: [0, 0, {}]\nbodies:\n"
       "  - geometry: {{box: {{min: [{}, 0, 0], max: [{}, {}, {}]}}}}\n"
       "    resolution: {}\n    material: {{density: {}, bulk_modulus: {}, shear_modulus: {}{}}}\n"
-      "constraints:\n  - {{region: {{box: {{min: [-1, -1, -1], max: [0, 1, 1]}}}}, fix: true}}\n",
+      "constraints:\n  - {{region: {{box: {{min: [-1, -1, -1], max: [0, 1, 1]}}}}, fix: true}}\n{}",
       -gravity, -anchor, C::length, C::side, C::side, resolution, C::density, C::bulk, C::shear,
-      material);
+      material, extra);
   return build_scene(parse_config(yaml, "cantilever.yaml"));
 }
 

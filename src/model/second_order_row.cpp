@@ -1,0 +1,97 @@
+#include "model/second_order_row.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace fissure {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+// The coefficient q_m of ∂²/∂x_k∂x_l in the basis of quadratic_fit.hpp.
+constexpr int kSecond[3][3] = {{3, 6, 7}, {6, 4, 8}, {7, 8, 5}};
+
+}  // namespace
+
+double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient) {
+  const int n = row.bonds;
+  const double s = row.scale;
+  // q_m = Σ_b a_bm d_b
+  std::array<Vec3, 9> q;
+  for (Vec3& v : q) v.setZero();
+  for (int b = 0; b < n; ++b) {
+    const Vec3 db(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
+    for (int m = 0; m < 9; ++m) q[m] += row.fit[b](m) * db;
+  }
+  // r_b = d_b − Σ_{m≥3} φ_m(ξ_b/s) q_m: the bond less the fitted curvature
+  auto corrected = [&](int b, QuadraticBasis& phi) {
+    phi = quadratic_basis(Vec3(row.xi[3 * b], row.xi[3 * b + 1], row.xi[3 * b + 2]), s);
+    Vec3 r(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
+    for (int m = 3; m < 9; ++m) r -= phi(m) * q[m];
+    return r;
+  };
+  QuadraticBasis phi;
+  double theta = 0;  // θ = Σ c ẽ V, ẽ_b = |r_b| − |ξ_b| (Eq 6)
+  for (int b = 0; b < n; ++b)
+    theta += row.dilatation_weight[b] * (corrected(b, phi).norm() - row.length[b]) *
+             row.member_volume[b];
+  // ê_b and the deviatoric sums (Eq 8): Σ w ê² V and Σ w ê |ξ| V
+  double squares = 0, moment = 0;
+  for (int b = 0; b < n; ++b) {
+    const double hat = corrected(b, phi).norm() - row.length[b] - theta * row.length[b] / 3;
+    squares += row.deviatoric_weight[b] * hat * hat * row.member_volume[b];
+    moment += row.deviatoric_weight[b] * hat * row.length[b] * row.member_volume[b];
+  }
+  const double bond_energy =
+      row.volume * (0.5 * row.bulk * theta * theta + 0.5 * row.deviatoric_modulus * squares);
+
+  // the cell term: F, ∂_kF, ∂_kE = sym(Fᵀ∂_kF), T_k = Σ_l M_kl C:∂_lE
+  const auto& c = row.cell_moment;
+  const double M[3][3] = {{c[0], c[3], c[4]}, {c[3], c[1], c[5]}, {c[4], c[5], c[2]}};
+  Mat3 F, G[3], E[3], T[3];
+  for (int l = 0; l < 3; ++l) F.col(l) = q[l] / s;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) G[k].col(l) = q[kSecond[k][l]] / (s * s);
+  for (int k = 0; k < 3; ++k) E[k] = 0.5 * (F.transpose() * G[k] + G[k].transpose() * F);
+  const double lame = row.bulk - 2 * row.shear / 3;
+  double cell_energy = 0;
+  for (int k = 0; k < 3; ++k) {
+    T[k].setZero();
+    for (int l = 0; l < 3; ++l)
+      T[k] += M[k][l] * (lame * E[l].trace() * Mat3::Identity() + 2 * row.shear * E[l]);
+    cell_energy += 0.5 * (T[k].array() * E[k].array()).sum();
+  }
+  if (!gradient) return bond_energy + cell_energy;
+
+  // ∂/∂ẽ_b = V_i [c_b V_b (κθ − (B/3) Σ w ê |ξ| V) + B w_b ê_b V_b], along r̂_b; through q, the
+  // curvature removed from every bond: P_m = −Σ_b φ_bm t_b r̂_b (m ≥ 3), plus the cell term's
+  // ∂W_cell/∂q_m: Σ_k ∂_kF T_k for F (over s), F T_k for ∂_kF (over s²).
+  const double pressure = row.bulk * theta - row.deviatoric_modulus / 3 * moment;
+  std::array<Vec3, 9> P;
+  for (Vec3& v : P) v.setZero();
+  for (int b = 0; b < n; ++b) {
+    const Vec3 r = corrected(b, phi);
+    const double hat = r.norm() - row.length[b] - theta * row.length[b] / 3;
+    const double t = row.volume * row.member_volume[b] *
+                     (row.dilatation_weight[b] * pressure +
+                      row.deviatoric_modulus * row.deviatoric_weight[b] * hat);
+    const Vec3 g = t / r.norm() * r;
+    for (int a = 0; a < 3; ++a) gradient[3 * b + a] = g[a];
+    for (int m = 3; m < 9; ++m) P[m] -= phi(m) * g;
+  }
+  Mat3 dF = Mat3::Zero();
+  for (int k = 0; k < 3; ++k) dF += G[k] * T[k];
+  for (int l = 0; l < 3; ++l) P[l] += dF.col(l) / s;
+  for (int k = 0; k < 3; ++k) {
+    const Mat3 dG = F * T[k];
+    for (int l = 0; l < 3; ++l) P[kSecond[k][l]] += dG.col(l) / (s * s);
+  }
+  for (int b = 0; b < n; ++b)
+    for (int m = 0; m < 9; ++m)
+      for (int a = 0; a < 3; ++a) gradient[3 * b + a] += row.fit[b](m) * P[m][a];
+  return bond_energy + cell_energy;
+}
+
+}  // namespace fissure

@@ -1,0 +1,43 @@
+#pragma once
+// One row of the second-order LPS energy (issue 15; docs/model.md, deviation 8): the LPS energy
+// of particle i with each bond's curvature removed, plus its cell's share of the strain gradient.
+// With its family complete (fictitious particles beyond the surface) and the weights of both
+// calibrations, every displacement quadratic in x gives the continuum's energy of the cell:
+// homogeneous strains exactly (the calibrations), and strain gradients through the cell term
+// instead of the bonds, whose midpoints would sample them (an excess of about 0.28 (δ/b)² in
+// bending, docs/model.md).
+//
+// With d_b = y_j − y_i for the bonds b of row i and the fit of quadratic_fit.hpp over them,
+//   q_m = Σ_b a_bm d_b,  F = [q_0 q_1 q_2]/s,  ∂_kF column l = q_{(kl)}/s²,
+//   r_b = d_b − Σ_{m≥3} φ_m(ξ_b/s) q_m,  ẽ_b = |r_b| − |ξ_b|          (the bond, less its
+//   curvature) θ = Σ_b c_b ẽ_b V_b,  ê_b = ẽ_b − θ|ξ_b|/3                          (Eqs 4, 6 with ẽ
+//   for e) V_i W_i = V_i (½κθ² + ½B Σ_b w_b ê_b² V_b),  B = 15μ/m_i            (Eq 8, linear solid)
+//   W_cell = ½ Σ_kl M_kl (λ tr ∂_kE tr ∂_lE + 2μ ∂_kE : ∂_lE),  ∂_kE = sym(Fᵀ ∂_kF),
+// M = ∫_cell (x − x_i)(x − x_i)ᵀ and λ = κ − 2μ/3. Objective: a rotation of y rotates every d_b,
+// q_m and r_b and leaves |r_b| and Fᵀ∂_kF as they are.
+#include <array>
+
+#include "model/quadratic_fit.hpp"
+
+namespace fissure {
+
+struct SecondOrderRow {
+  int bonds = 0;
+  const double* xi;                   // ξ_b, 3 per bond
+  const double* length;               // |ξ_b|
+  const double* dilatation_weight;    // c_b
+  const double* deviatoric_weight;    // w_b
+  const double* member_volume;        // V_j of each bond
+  const QuadraticBasis* fit;          // a_b (quadratic_fit over the same bonds, scale s)
+  double scale;                       // s
+  double volume;                      // V_i
+  double bulk, shear;                 // κ, μ
+  double deviatoric_modulus;          // B = 15μ/m_i
+  std::array<double, 6> cell_moment;  // M: xx, yy, zz, xy, xz, yz
+};
+
+// V_i W_i + W_cell at bond vectors d (3 per bond); with gradient, also ∂/∂d_b (3 per bond),
+// overwritten. The force on member j is −gradient_b, on i the sum of the gradients.
+double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient);
+
+}  // namespace fissure

@@ -1,0 +1,237 @@
+// One row of the second-order LPS energy (model/second_order_row.hpp; issue 15): on an interior
+// particle of a tet-sampled block, with both calibrations' weights and the fit over its family.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+
+#include "model/deviatoric_calibration.hpp"
+#include "model/dilatation_calibration.hpp"
+#include "model/second_order_row.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+constexpr double kBulk = 5e8, kShear = 3e8;
+
+// Row i of a block: its bonds' data, kept alive for the SecondOrderRow that points into them.
+struct RowData {
+  std::vector<double> xi, length, c, w, volume;
+  std::vector<QuadraticBasis> fit;
+  SecondOrderRow row;
+};
+
+// The particle nearest the centre of a 0.24 m block at λ = 0.04 m, whose family is whole.
+RowData interior_row() {
+  const Scene scene = test::block_scene(0.24, 0.04, kBulk, kShear);
+  const Particles& p = scene.particles;
+  const Families& f = scene.families;
+  const double delta = scene.horizon_of_body[0];
+  std::vector<float> omega(f.directed_bonds());
+  std::vector<double> m(p.count(), 0.0);
+  for (int i = 0; i < p.count(); ++i)
+    for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+      omega[b] = static_cast<float>(delta / f.reference_length[b]);  // Eq 5
+      m[i] += double(omega[b]) * f.reference_length[b] * f.reference_length[b] *
+              p.volume[f.neighbors[b]];
+    }
+  const std::vector<float> c = dilatation_weights(p, f, omega, m);
+  const std::vector<float> w =
+      deviatoric_weights(p, f, omega, std::vector<double>(p.count(), kShear), m,
+                         {isotropic_deviatoric_shape()})
+          .weights;
+  int i = 0;
+  double nearest = INFINITY;
+  for (int k = 0; k < p.count(); ++k) {
+    double r2 = 0;
+    for (int a = 0; a < 3; ++a) r2 += std::pow(p.reference[3 * k + a] - 0.12, 2);
+    if (r2 < nearest) nearest = r2, i = k;
+  }
+  RowData data;
+  std::vector<Eigen::Vector3d> members;
+  std::vector<double> fit_weight;
+  for (int b = f.offsets[i]; b < f.offsets[i + 1]; ++b) {
+    const int j = f.neighbors[b];
+    Eigen::Vector3d xi;
+    for (int a = 0; a < 3; ++a) xi[a] = p.reference[3 * j + a] - p.reference[3 * i + a];
+    data.xi.insert(data.xi.end(), xi.data(), xi.data() + 3);
+    data.length.push_back(f.reference_length[b]);
+    data.c.push_back(c[b]), data.w.push_back(w[b]), data.volume.push_back(p.volume[j]);
+    members.push_back(xi), fit_weight.push_back(delta / xi.norm() * p.volume[j]);
+  }
+  EXPECT_TRUE(quadratic_fit(members, fit_weight, delta, data.fit));
+  const double h2 = std::pow(p.volume[i], 2.0 / 3);
+  data.row = {.bonds = static_cast<int>(members.size()),
+              .xi = data.xi.data(),
+              .length = data.length.data(),
+              .dilatation_weight = data.c.data(),
+              .deviatoric_weight = data.w.data(),
+              .member_volume = data.volume.data(),
+              .fit = data.fit.data(),
+              .scale = delta,
+              .volume = p.volume[i],
+              .bulk = kBulk,
+              .shear = kShear,
+              .deviatoric_modulus = 15 * kShear / m[i],
+              // a cell's second moment, anisotropic so that its off-diagonal terms count
+              .cell_moment = {0.06 * p.volume[i] * h2, 0.05 * p.volume[i] * h2,
+                              0.04 * p.volume[i] * h2, 0.01 * p.volume[i] * h2,
+                              -0.005 * p.volume[i] * h2, 0.008 * p.volume[i] * h2}};
+  return data;
+}
+
+// ½ ε:C:ε, C isotropic with κ and μ.
+double strain_energy_density(const Eigen::Matrix3d& e) {
+  const double lame = kBulk - 2 * kShear / 3;
+  return 0.5 * lame * e.trace() * e.trace() + kShear * (e.array() * e.array()).sum();
+}
+
+// Bond vectors d_b = y(x_i + ξ_b) − y(x_i) of y(x) = x + Hξ + ½ Γ(ξ, ξ), Γ_a = ∂²u_a (symmetric).
+std::vector<double> deformed(const RowData& data, const Eigen::Matrix3d& H,
+                             const std::array<Eigen::Matrix3d, 3>& Gamma) {
+  std::vector<double> d(data.xi.size());
+  for (int b = 0; b < data.row.bonds; ++b) {
+    const Eigen::Vector3d xi(&data.xi[3 * b]);
+    for (int a = 0; a < 3; ++a)
+      d[3 * b + a] = xi[a] + H.row(a).dot(xi) + 0.5 * xi.dot(Gamma[a] * xi);
+  }
+  return d;
+}
+
+Eigen::Matrix3d random_matrix(std::mt19937& rng) {
+  std::uniform_real_distribution<double> value(-1, 1);
+  Eigen::Matrix3d A;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) A(r, c) = value(rng);
+  return A;
+}
+
+// A small homogeneous strain gives V_i ½ε:C:ε: the corrected bonds equal the plain ones (a
+// linear field has no curvature to remove), the calibrations make the row exact, and the cell
+// term vanishes. Relative error O(|ε|) from the nonlinear stretch, and the calibrated weights'
+// single precision (about 1e-7).
+TEST(SecondOrderRow, HomogeneousStrainGivesTheContinuumEnergy) {
+  const RowData data = interior_row();
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::Matrix3d A = random_matrix(rng), e = 1e-6 * 0.5 * (A + A.transpose());
+    const std::array<Eigen::Matrix3d, 3> none{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
+                                              Eigen::Matrix3d::Zero()};
+    const std::vector<double> d = deformed(data, e, none);
+    const double expected = data.row.volume * strain_energy_density(e);
+    EXPECT_NEAR(second_order_row_energy(data.row, d.data(), nullptr) / expected, 1.0, 2e-5)
+        << "trial " << trial;
+  }
+}
+
+// A displacement quadratic in x whose strain vanishes at x_i stores only the cell's share of
+// its strain gradient, ½ Σ_kl M_kl ∂_kε:C:∂_lε; with a strain at x_i as well, V_i W(ε_i) on top.
+// A row that kept the bonds' curvature would store instead what the bonds' midpoints sample, of
+// the order of the family's second moment (δ² against the cell's h²/20, tens of times more), and
+// fail; so would a cell term with a wrong index order or a missing symmetrisation.
+TEST(SecondOrderRow, QuadraticDisplacementGivesTheCellsEnergy) {
+  const RowData data = interior_row();
+  std::mt19937 rng(5);
+  const auto& c = data.row.cell_moment;
+  const double M[3][3] = {{c[0], c[3], c[4]}, {c[3], c[1], c[5]}, {c[4], c[5], c[2]}};
+  for (int trial = 0; trial < 4; ++trial) {
+    std::array<Eigen::Matrix3d, 3> Gamma;  // ∂²u_a/∂x_k∂x_l, symmetric in k, l
+    for (auto& g : Gamma) {
+      const Eigen::Matrix3d A = random_matrix(rng);
+      g = 1e-5 * (A + A.transpose());
+    }
+    const Eigen::Matrix3d A = random_matrix(rng);
+    const Eigen::Matrix3d H = trial < 2 ? Eigen::Matrix3d::Zero() : Eigen::Matrix3d(1e-7 * A);
+    // ∂_kε_ab = ½(∂_k∂_b u_a + ∂_k∂_a u_b)
+    std::array<Eigen::Matrix3d, 3> gradient;
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) gradient[k](a, b) = 0.5 * (Gamma[a](k, b) + Gamma[b](k, a));
+    double expected = data.row.volume * strain_energy_density(0.5 * (H + H.transpose()));
+    const double lame = kBulk - 2 * kShear / 3;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l)
+        expected += 0.5 * M[k][l] *
+                    (lame * gradient[k].trace() * gradient[l].trace() +
+                     2 * kShear * (gradient[k].array() * gradient[l].array()).sum());
+    const std::vector<double> d = deformed(data, H, Gamma);
+    EXPECT_NEAR(second_order_row_energy(data.row, d.data(), nullptr) / expected, 1.0, 1e-4)
+        << "trial " << trial;
+  }
+}
+
+// The gradient against central differences of the energy, at a random finite deformation (a
+// rotation, a 1% strain and a curvature): each of the 3 × bonds components within 1e-6 of the
+// largest. A dropped chain-rule term (the curvature's pull on every bond, or the cell term's)
+// is of the size of the gradient itself.
+TEST(SecondOrderRow, GradientMatchesFiniteDifferences) {
+  const RowData data = interior_row();
+  std::mt19937 rng(9);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  std::array<Eigen::Matrix3d, 3> Gamma;
+  for (auto& g : Gamma) {
+    const Eigen::Matrix3d A = random_matrix(rng);
+    g = 0.3 * (A + A.transpose());
+  }
+  std::vector<double> d = deformed(data, 0.01 * random_matrix(rng), Gamma);
+  for (int b = 0; b < data.row.bonds; ++b) {
+    const Eigen::Vector3d v = R * Eigen::Vector3d(&d[3 * b]);
+    for (int a = 0; a < 3; ++a) d[3 * b + a] = v[a];
+  }
+  std::vector<double> gradient(d.size());
+  second_order_row_energy(data.row, d.data(), gradient.data());
+  double largest = 0, error = 0;
+  for (double g : gradient) largest = std::max(largest, std::abs(g));
+  const double h = 1e-7 * data.row.scale;
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    std::vector<double> plus = d, minus = d;
+    plus[k] += h, minus[k] -= h;
+    const double difference = (second_order_row_energy(data.row, plus.data(), nullptr) -
+                               second_order_row_energy(data.row, minus.data(), nullptr)) /
+                              (2 * h);
+    error = std::max(error, std::abs(difference - gradient[k]));
+  }
+  std::printf("largest gradient %.3e, largest difference from central differences %.3e\n", largest,
+              error);
+  EXPECT_LT(error, 1e-6 * largest);
+}
+
+// A rotation of the deformed row leaves its energy unchanged and rotates its gradient: the fit,
+// the corrected bonds and Fᵀ∂_kF all turn with it. A cell term on sym(∂_kF) instead of
+// sym(Fᵀ∂_kF) changes by the rotation's size and fails.
+TEST(SecondOrderRow, EnergyIsObjective) {
+  const RowData data = interior_row();
+  std::mt19937 rng(13);
+  std::array<Eigen::Matrix3d, 3> Gamma;
+  for (auto& g : Gamma) {
+    const Eigen::Matrix3d A = random_matrix(rng);
+    g = 0.3 * (A + A.transpose());
+  }
+  const std::vector<double> d = deformed(data, 0.01 * random_matrix(rng), Gamma);
+  std::vector<double> gradient(d.size()), turned_gradient(d.size()), turned(d.size());
+  const double energy = second_order_row_energy(data.row, d.data(), gradient.data());
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(1.9, Eigen::Vector3d(-2, 1, 0.5).normalized()).toRotationMatrix();
+  for (int b = 0; b < data.row.bonds; ++b) {
+    const Eigen::Vector3d v = R * Eigen::Vector3d(&d[3 * b]);
+    for (int a = 0; a < 3; ++a) turned[3 * b + a] = v[a];
+  }
+  const double turned_energy =
+      second_order_row_energy(data.row, turned.data(), turned_gradient.data());
+  EXPECT_NEAR(turned_energy / energy, 1.0, 1e-10);
+  double largest = 0, error = 0;
+  for (int b = 0; b < data.row.bonds; ++b) {
+    const Eigen::Vector3d expected = R * Eigen::Vector3d(&gradient[3 * b]);
+    for (int a = 0; a < 3; ++a) {
+      largest = std::max(largest, std::abs(expected[a]));
+      error = std::max(error, std::abs(turned_gradient[3 * b + a] - expected[a]));
+    }
+  }
+  EXPECT_LT(error, 1e-10 * largest);
+}
+
+}  // namespace
+}  // namespace fissure
