@@ -15,6 +15,7 @@
 //   W_cell = ½ Σ_kl M_kl (λ tr ∂_kE tr ∂_lE + 2μ ∂_kE : ∂_lE),  ∂_kE = sym(Fᵀ ∂_kF),
 // M = ∫_cell (x − x_i)(x − x_i)ᵀ and λ = κ − 2μ/3. Objective: a rotation of y rotates every d_b,
 // q_m and r_b and leaves |r_b| and Fᵀ∂_kF as they are.
+#include <Eigen/Core>
 #include <array>
 
 #include "model/quadratic_fit.hpp"
@@ -39,5 +40,10 @@ struct SecondOrderRow {
 // V_i W_i + W_cell at bond vectors d (3 per bond); with gradient, also ∂/∂d_b (3 per bond),
 // overwritten. The force on member j is −gradient_b, on i the sum of the gradients.
 double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient);
+
+// ∂²/∂d² of the same at d, 3·bonds square, into hessian (resized): the material part (the
+// squared derivatives of θ and ê), the bonds' geometric part (each stretch's curvature times its
+// force) and the cell term's (second_order_row_hessian.cpp).
+void second_order_row_hessian(const SecondOrderRow& row, const double* d, Eigen::MatrixXd& hessian);
 
 }  // namespace fissure
