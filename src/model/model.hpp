@@ -128,6 +128,8 @@ class Model {
   std::atomic<std::size_t> revision_{0};
 };
 
+// Each particle's material constants, from its body.
+MaterialPoints material_points(const Scene& scene);
 // The model the scene's bodies ask for (material.model), set up for its particles. The model
 // refers to the scene's particles and families, so the scene must outlive it; a temporary scene
 // is refused at compile time.

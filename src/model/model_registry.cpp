@@ -28,7 +28,7 @@ void register_model(ModelKind kind) { add_kind(kinds(), std::move(kind), "model"
 
 std::vector<std::string> model_names() { return kind_names(kinds()); }
 
-std::unique_ptr<Model> make_model(const Scene& scene) {
+MaterialPoints material_points(const Scene& scene) {
   const Particles& particles = scene.particles;
   MaterialPoints m;
   const int n = particles.count();
@@ -49,6 +49,11 @@ std::unique_ptr<Model> make_model(const Scene& scene) {
     for (int i = 0; i < n; ++i)
       m.anisotropy[i] = scene.config.bodies[particles.body[i]].material.anisotropy.G;
   }
+  return m;
+}
+
+std::unique_ptr<Model> make_model(const Scene& scene) {
+  MaterialPoints m = material_points(scene);
   const std::string& name = scene.config.bodies.front().material.model;
   for (const auto& kind : kinds())
     if (kind.name == name) return kind.make(scene, std::move(m));

@@ -15,7 +15,8 @@ constexpr int kSecond[3][3] = {{3, 6, 7}, {6, 4, 8}, {7, 8, 5}};
 
 }  // namespace
 
-double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient) {
+double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient,
+                               double* dilatation) {
   const int n = row.bonds;
   const double s = row.scale;
   // q_m = Σ_b a_bm d_b
@@ -37,6 +38,7 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
   for (int b = 0; b < n; ++b)
     theta += row.dilatation_weight[b] * (corrected(b, phi).norm() - row.length[b]) *
              row.member_volume[b];
+  if (dilatation) *dilatation = theta;
   // ê_b and the deviatoric sums (Eq 8): Σ w ê² V and Σ w ê |ξ| V
   double squares = 0, moment = 0;
   for (int b = 0; b < n; ++b) {

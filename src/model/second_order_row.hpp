@@ -38,8 +38,10 @@ struct SecondOrderRow {
 };
 
 // V_i W_i + W_cell at bond vectors d (3 per bond); with gradient, also ∂/∂d_b (3 per bond),
-// overwritten. The force on member j is −gradient_b, on i the sum of the gradients.
-double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient);
+// overwritten, and with dilatation θ. The force on member j is −gradient_b, on i the sum of
+// the gradients.
+double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient,
+                               double* dilatation = nullptr);
 
 // ∂²/∂d² of the same at d, 3·bonds square, into hessian (resized): the material part (the
 // squared derivatives of θ and ê), the bonds' geometric part (each stretch's curvature times its

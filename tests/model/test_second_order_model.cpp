@@ -1,0 +1,228 @@
+// The second-order model with fictitious particles (model/second_order_model.hpp; issue 15), on
+// a tet-sampled block whose families its images complete.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+
+#include "model/second_order_model.hpp"
+#include "support/scenes.hpp"
+
+namespace fissure {
+namespace {
+
+constexpr double kBulk = 5e8, kShear = 3e8, kLambda = 0.04;
+constexpr double kSize[3] = {0.24, 0.12, 0.12};
+
+Scene block() {
+  return test::block_scene({.size = {kSize[0], kSize[1], kSize[2]},
+                            .resolution = kLambda,
+                            .bulk = kBulk,
+                            .shear = kShear,
+                            .scene = "output: {surface: true}\n"});
+}
+
+// ½ ε:C:ε, C isotropic with κ and μ.
+double strain_energy_density(const Eigen::Matrix3d& e) {
+  const double lame = kBulk - 2 * kShear / 3;
+  return 0.5 * lame * e.trace() * e.trace() + kShear * (e.array() * e.array()).sum();
+}
+
+Eigen::Matrix3d random_matrix(std::mt19937& rng) {
+  std::uniform_real_distribution<double> value(-1, 1);
+  Eigen::Matrix3d A;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) A(r, c) = value(rng);
+  return A;
+}
+
+// y(x) = x + H x + ½ Γ_a(x, x) per component a, x from the block's centre.
+std::vector<double> deformed(const Particles& p, const Eigen::Matrix3d& H,
+                             const std::array<Eigen::Matrix3d, 3>& Gamma) {
+  std::vector<double> y(p.reference);
+  for (int i = 0; i < p.count(); ++i) {
+    Eigen::Vector3d x;
+    for (int a = 0; a < 3; ++a) x[a] = p.reference[3 * i + a] - 0.5 * kSize[a];
+    for (int a = 0; a < 3; ++a) y[3 * i + a] += H.row(a).dot(x) + 0.5 * x.dot(Gamma[a] * x);
+  }
+  return y;
+}
+
+double total_energy(SecondOrderModel& model, const std::vector<double>& y) {
+  std::vector<double> f(y.size());
+  return model.forces_and_energy(y.data(), f.data());
+}
+
+// The images complete every family: every particle's deviatoric calibration is exact, and a
+// small homogeneous strain gives each particle ½ε:C:ε (relative error O(|ε|) from the stretch's
+// nonlinearity, and the weights' single precision). Without images the block's surface rows are
+// 5–10% off (test_full_surface_correction.cpp's uncalibrated figures).
+TEST(SecondOrderModel, HomogeneousStrainIsExactOnEveryParticle) {
+  const Scene scene = block();
+  const auto model = make_second_order_model(scene, material_points(scene));
+  const Particles& p = scene.particles;
+  double images = 0, exact = 0;
+  for (const auto& [name, value] : model->statistics()) {
+    if (name == "fictitious_particles") images = value;
+    if (name == "deviatoric_exact_rows") exact = value;
+  }
+  std::printf("%d particles, %.0f images, %.0f exactly calibrated rows\n", p.count(), images,
+              exact);
+  EXPECT_GT(images, 0);
+  EXPECT_EQ(exact, p.count());
+  std::mt19937 rng(1);
+  const Eigen::Matrix3d A = random_matrix(rng), e = 1e-6 * 0.5 * (A + A.transpose());
+  const std::array<Eigen::Matrix3d, 3> none{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
+                                            Eigen::Matrix3d::Zero()};
+  const std::vector<double> y = deformed(p, e, none);
+  std::vector<double> w(p.count());
+  model->energy_density(y.data(), w.data());
+  double worst = 0;
+  for (int i = 0; i < p.count(); ++i)
+    worst = std::max(worst, std::abs(w[i] / strain_energy_density(e) - 1));
+  std::printf("largest relative error of W_i: %.2e\n", worst);
+  EXPECT_LT(worst, 1e-4);
+}
+
+// Any displacement quadratic in x stores exactly the continuum's energy of the block,
+// ∫W = V W(ε_0) + ½ Σ_kl J_kl ∂_kε:C:∂_lε with J = V/12 diag(a², b², c²) about its centre: each
+// row gives its particle's V_i W(ε(x_i)) and its tet's second moment the rest, and the tets tile
+// the block. Without the cell term the sum is short by the particles' quadrature (a few %),
+// without the curvature removal it is long by the bonds' midpoint spread, and images that moved
+// wrongly would break both.
+TEST(SecondOrderModel, QuadraticDisplacementStoresTheBlocksContinuumEnergy) {
+  const Scene scene = block();
+  const auto model = make_second_order_model(scene, material_points(scene));
+  std::mt19937 rng(2);
+  for (int trial = 0; trial < 3; ++trial) {
+    std::array<Eigen::Matrix3d, 3> Gamma;
+    for (auto& g : Gamma) {
+      const Eigen::Matrix3d A = random_matrix(rng);
+      g = 1e-5 * (A + A.transpose());
+    }
+    const Eigen::Matrix3d A = random_matrix(rng);
+    const Eigen::Matrix3d H = 1e-7 * trial * A;
+    std::array<Eigen::Matrix3d, 3> gradient;  // ∂_kε_ab = ½(∂_k∂_b u_a + ∂_k∂_a u_b)
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) gradient[k](a, b) = 0.5 * (Gamma[a](k, b) + Gamma[b](k, a));
+    const double volume = kSize[0] * kSize[1] * kSize[2], lame = kBulk - 2 * kShear / 3;
+    double expected = volume * strain_energy_density(0.5 * (H + H.transpose()));
+    for (int k = 0; k < 3; ++k)
+      expected += 0.5 * volume / 12 * kSize[k] * kSize[k] *
+                  (lame * gradient[k].trace() * gradient[k].trace() +
+                   2 * kShear * (gradient[k].array() * gradient[k].array()).sum());
+    const double energy = total_energy(*model, deformed(scene.particles, H, Gamma));
+    std::printf("trial %d: energy / continuum %.8f\n", trial, energy / expected);
+    EXPECT_NEAR(energy / expected, 1.0, 1e-4);
+  }
+}
+
+// Forces are −∂Π/∂y, the images' folded back through their stencils: the derivative of the
+// energy along random directions by central differences against −f·v, at a finite deformation.
+// A fold that missed the images' forces, or a sign, fails by O(1).
+TEST(SecondOrderModel, ForcesAreMinusTheGradientOfTheEnergy) {
+  const Scene scene = block();
+  const auto model = make_second_order_model(scene, material_points(scene));
+  std::mt19937 rng(3);
+  std::array<Eigen::Matrix3d, 3> Gamma;
+  for (auto& g : Gamma) {
+    const Eigen::Matrix3d A = random_matrix(rng);
+    g = 0.05 * (A + A.transpose());
+  }
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d H =
+      R * (Eigen::Matrix3d::Identity() + 0.01 * random_matrix(rng)) - Eigen::Matrix3d::Identity();
+  const std::vector<double> y = deformed(scene.particles, H, Gamma);
+  std::vector<double> f(y.size());
+  model->forces(y.data(), f.data());
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> v(y.size()), plus(y), minus(y);
+    double power = 0;
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = normal(rng), power -= f[k] * v[k];
+    const double h = 1e-6 * kLambda;
+    for (std::size_t k = 0; k < v.size(); ++k) plus[k] += h * v[k], minus[k] -= h * v[k];
+    const double difference = (total_energy(*model, plus) - total_energy(*model, minus)) / (2 * h);
+    std::printf("direction %d: dΠ/dv %.6e, −f·v %.6e\n", trial, difference, power);
+    EXPECT_NEAR(difference / power, 1.0, 1e-6);
+  }
+}
+
+// A rigid rotation of a deformed block leaves its energy unchanged and rotates its forces.
+TEST(SecondOrderModel, EnergyAndForcesAreObjective) {
+  const Scene scene = block();
+  const auto model = make_second_order_model(scene, material_points(scene));
+  std::mt19937 rng(4);
+  std::array<Eigen::Matrix3d, 3> Gamma;
+  for (auto& g : Gamma) {
+    const Eigen::Matrix3d A = random_matrix(rng);
+    g = 0.05 * (A + A.transpose());
+  }
+  const std::vector<double> y = deformed(scene.particles, 0.01 * random_matrix(rng), Gamma);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.3, 1, -0.5).normalized()).toRotationMatrix();
+  std::vector<double> turned(y.size()), f(y.size()), turned_f(y.size());
+  for (std::size_t i = 0; i < y.size() / 3; ++i) {
+    const Eigen::Vector3d v = R * Eigen::Vector3d(&y[3 * i]) + Eigen::Vector3d(0.5, -1, 2);
+    for (int a = 0; a < 3; ++a) turned[3 * i + a] = v[a];
+  }
+  const double energy = model->forces_and_energy(y.data(), f.data());
+  const double turned_energy = model->forces_and_energy(turned.data(), turned_f.data());
+  EXPECT_NEAR(turned_energy / energy, 1.0, 1e-9);
+  double largest = 0, error = 0;
+  for (std::size_t i = 0; i < y.size() / 3; ++i) {
+    const Eigen::Vector3d expected = R * Eigen::Vector3d(&f[3 * i]);
+    for (int a = 0; a < 3; ++a) {
+      largest = std::max(largest, std::abs(expected[a]));
+      error = std::max(error, std::abs(turned_f[3 * i + a] - expected[a]));
+    }
+  }
+  EXPECT_LT(error, 1e-8 * largest);
+}
+
+// The stable step is a bound: the highest frequency of the linearised block, by power iteration
+// on M⁻¹K with K v from central differences of the forces (a lower bound on λmax), gives
+// 2/√λ no shorter than the model's step. Printed: how much shorter the bound is, and the LPS
+// model's step on the same particles for scale.
+TEST(SecondOrderModel, StableTimeStepIsABound) {
+  const Scene scene = block();
+  const auto model = make_second_order_model(scene, material_points(scene));
+  const Particles& p = scene.particles;
+  const std::vector<double>& x = p.reference;
+  std::vector<double> v(x.size()), Kv(x.size()), plus(x.size()), minus(x.size()), f_plus(x.size()),
+      f_minus(x.size());
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  for (double& c : v) c = normal(rng);
+  double lambda = 0;
+  for (int it = 0; it < 200; ++it) {
+    double norm = 0;
+    for (double c : v) norm += c * c;
+    norm = std::sqrt(norm);
+    for (double& c : v) c /= norm;
+    const double h = 1e-6 * kLambda;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      plus[k] = x[k] + h * v[k], minus[k] = x[k] - h * v[k];
+    model->forces(plus.data(), f_plus.data());
+    model->forces(minus.data(), f_minus.data());
+    double vMv = 0, vKv = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      Kv[k] = -(f_plus[k] - f_minus[k]) / (2 * h);
+      vKv += v[k] * Kv[k], vMv += v[k] * v[k] * p.mass[k / 3];
+    }
+    lambda = vKv / vMv;  // Rayleigh quotient of M⁻¹K
+    for (std::size_t k = 0; k < x.size(); ++k) v[k] = Kv[k] / p.mass[k / 3];
+  }
+  const double dt = model->stable_time_step(), limit = 2 / std::sqrt(lambda);
+  std::printf(
+      "model's step %.4e s, 2/sqrt(lambda) from power iteration %.4e s (ratio %.3f); the lps "
+      "model's step %.4e s\n",
+      dt, limit, dt / limit, make_model(scene)->stable_time_step());
+  EXPECT_LE(dt, limit);
+}
+
+}  // namespace
+}  // namespace fissure
