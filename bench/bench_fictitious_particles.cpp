@@ -27,7 +27,6 @@
 #include <string>
 #include <vector>
 
-#include "fictitious/clamped_images.hpp"
 #include "fictitious/lattice_images.hpp"
 #include "fictitious/linear_lps_stiffness.hpp"
 #include "model/deviatoric_calibration.hpp"
@@ -117,7 +116,8 @@ Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxF
     else
       add_mirror_images(real, 0, bench::free_face_triangles(box), delta, d.images);
     fit_stencils(real, scene.horizon_of_body, fit_radius, d.images);
-    if (kind == Images::clamped) bench::clamp_stencils(real, delta, fit_radius, 0.0, d.images);
+    if (kind == Images::clamped)
+      clamp_stencils(real, scene.horizon_of_body, fit_radius, {{0, 0, 0}, {-1, 0, 0}}, d.images);
   }
   d.particles = extended(real, d.images);
   d.families =

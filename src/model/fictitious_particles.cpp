@@ -248,6 +248,74 @@ void fit_stencils(const Particles& particles, const std::vector<double>& horizon
   }
 }
 
+void clamp_stencils(const Particles& particles, const std::vector<double>& horizon_of_body,
+                    double fit_radius, const ClampPlane& plane, FictitiousParticles& images) {
+  const PointCloud cloud{particles.reference};
+  KdTree points(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  points.buildIndex();
+  const Vec3 origin(plane.point.data()), normal = Vec3(plane.normal.data()).normalized();
+  FictitiousParticles out = images;
+  out.offsets.assign(1, 0);
+  out.particle.clear();
+  out.weight.clear();
+  std::vector<std::pair<std::uint32_t, double>> matches;
+  for (int g = 0; g < images.count(); ++g) {
+    const Vec3 x(images.position[3 * g], images.position[3 * g + 1], images.position[3 * g + 2]);
+    if (normal.dot(x - origin) <= 0) {
+      for (int s = images.offsets[g]; s < images.offsets[g + 1]; ++s)
+        out.particle.push_back(images.particle[s]), out.weight.push_back(images.weight[s]);
+      out.offsets.push_back(static_cast<int>(out.particle.size()));
+      continue;
+    }
+    const int body = images.body[g];
+    const double horizon = horizon_of_body[body], radius = fit_radius * horizon;
+    points.radiusSearch(x.data(), 4 * horizon * horizon, matches,
+                        nanoflann::SearchParams(32, 0, true));
+    int k = -1;
+    for (const auto& m : matches)
+      if (particles.body[m.first] == body) {
+        k = static_cast<int>(m.first);
+        break;
+      }
+    if (k < 0)
+      throw std::invalid_argument(fmt::format(
+          "fictitious particles: image {} has no particle of body {} within 2 horizons", g, body));
+    const Vec3 xk(particles.reference[3 * k], particles.reference[3 * k + 1],
+                  particles.reference[3 * k + 2]);
+    // φ(p) = (n·(p − point))/δ (1, (p − x_k)/δ): every quadratic vanishing on the plane
+    auto basis = [&](const Vec3& p) {
+      const Vec3 d = (p - xk) / horizon;
+      return Eigen::Vector4d(Eigen::Vector4d(1, d[0], d[1], d[2]) * normal.dot(p - origin) /
+                             horizon);
+    };
+    points.radiusSearch(xk.data(), radius * radius, matches, nanoflann::SearchParams(32, 0, false));
+    Eigen::Matrix4d moments = Eigen::Matrix4d::Zero();
+    std::vector<std::pair<int, Eigen::Vector4d>> rows;
+    for (const auto& m : matches) {
+      const int j = static_cast<int>(m.first);
+      if (particles.body[j] != body) continue;
+      const Vec3 p(particles.reference[3 * j], particles.reference[3 * j + 1],
+                   particles.reference[3 * j + 2]);
+      const double distance = (p - xk).norm();
+      const double weight = (distance > 0 ? horizon / distance : 1.0) * particles.volume[j];
+      const Eigen::Vector4d phi = basis(p);
+      moments += weight * phi * phi.transpose();  // Σ ω V_j φ φᵀ
+      rows.push_back({j, weight * phi});
+    }
+    const Eigen::LDLT<Eigen::Matrix4d> fit(moments);
+    if (rows.size() < 4 || fit.info() != Eigen::Success || !fit.isPositive() ||
+        fit.vectorD().minCoeff() <= 1e-12 * fit.vectorD().maxCoeff())
+      throw std::invalid_argument(fmt::format(
+          "fictitious particles: the clamped displacement around particle {} cannot be fitted: "
+          "{} particles of its body within {:.3g} m",
+          k, rows.size(), radius));
+    const Eigen::Vector4d z = fit.solve(basis(x));
+    for (const auto& [j, phi] : rows) out.particle.push_back(j), out.weight.push_back(phi.dot(z));
+    out.offsets.push_back(static_cast<int>(out.particle.size()));
+  }
+  images = std::move(out);
+}
+
 std::array<double, 2> stencil_amplification(const FictitiousParticles& images) {
   double largest = 0, mean = 0;
   for (int g = 0; g < images.count(); ++g) {

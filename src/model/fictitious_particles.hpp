@@ -19,7 +19,8 @@ struct FictitiousParticles {
   std::vector<double> position;  // x_g, xyz interleaved
   std::vector<double> volume;    // V_g: its source's
   std::vector<int> body;
-  // y_g = Σ_s weight[s] y_particle[s] over s in [offsets[g], offsets[g + 1])
+  // u_g = Σ_s weight[s] u_particle[s] over s in [offsets[g], offsets[g + 1]), displacements;
+  // the weights of a free face's image sum to 1, so that y_g = Σ_s weight[s] y_particle[s] too
   std::vector<int> offsets{0};
   std::vector<int> particle;
   std::vector<double> weight;
@@ -48,6 +49,22 @@ void add_mirror_images(const Particles& particles, int body, const std::vector<T
 // particle where fewer than 9 particles make the fit singular.
 void fit_stencils(const Particles& particles, const std::vector<double>& horizon_of_body,
                   double fit_radius, FictitiousParticles& images);
+
+// A clamp face: the plane through `point` with unit `normal` pointing out of the body, behind
+// which the displacement is held at zero.
+struct ClampPlane {
+  std::array<double, 3> point, normal;
+};
+
+// Replaces the stencils of the images behind `plane` (normal·(x_g − point) > 0) by the quadratic
+// displacement that vanishes on the plane, u(p) = (normal·(p − point)) (a + B (p − x_k)), fitted
+// as fit_stencils does around the particle k of its body nearest to it: a clamp's field continued
+// through its face, where a held block of particles would make the clamp soft (docs/model.md,
+// deviation 8). Such a stencil reproduces every quadratic displacement vanishing on the plane; its
+// weights do not sum to 1 (a translation is not free). Throws std::invalid_argument naming the
+// particle where fewer than 4 particles make the fit singular.
+void clamp_stencils(const Particles& particles, const std::vector<double>& horizon_of_body,
+                    double fit_radius, const ClampPlane& plane, FictitiousParticles& images);
 
 // The largest and the mean Σ_s |weight[s]| of the stencils: how much an image amplifies a
 // displacement of its particles (1 for an interpolation).

@@ -183,6 +183,62 @@ TEST(FictitiousParticles, StencilsReproduceEveryQuadraticDisplacement) {
   EXPECT_LT(worst, 1e-12);
 }
 
+// Behind a clamp face (here x = 0) an image moves as the quadratic displacement that vanishes on
+// the face: its stencil reproduces every such field, u(x) = x (a + B x), to round-off; a field
+// that does not vanish on the face (a translation) is not followed, and the images in front of
+// the face keep their stencils. A basis without the factor x, or one fitted with the free
+// stencils' constant term, would follow the translation and fail.
+TEST(FictitiousParticles, ClampedStencilsReproduceEveryQuadraticVanishingOnTheFace) {
+  const Scene scene = test::block_scene(kSize, kLambda, 1e6, 1e6);
+  const Particles& p = scene.particles;
+  FictitiousParticles images;
+  add_mirror_images(p, 0, box_triangles(kSize), scene.horizon_of_body[0], images);
+  fit_stencils(p, scene.horizon_of_body, 1.5, images);
+  const FictitiousParticles free = images;
+  clamp_stencils(p, scene.horizon_of_body, 1.5, {{0, 0, 0}, {-1, 0, 0}}, images);
+  ASSERT_EQ(images.count(), free.count());
+
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> coefficient(-1, 1);
+  double a[3], B[9];  // u_r = x_0 (a_r + B_rc x_c)
+  for (double& v : a) v = coefficient(random);
+  for (double& v : B) v = coefficient(random) / kSize;
+  auto field = [&](const double* x, int r) {
+    return x[0] * (a[r] + B[3 * r] * x[0] + B[3 * r + 1] * x[1] + B[3 * r + 2] * x[2]);
+  };
+  int clamped = 0, changed = 0;
+  double worst = 0, largest_sum = -INFINITY;
+  for (int g = 0; g < images.count(); ++g) {
+    if (images.position[3 * g] >= 0) {  // in front of the face
+      changed += std::vector<int>(images.particle.begin() + images.offsets[g],
+                                  images.particle.begin() + images.offsets[g + 1]) !=
+                     std::vector<int>(free.particle.begin() + free.offsets[g],
+                                      free.particle.begin() + free.offsets[g + 1]) ||
+                 std::vector<double>(images.weight.begin() + images.offsets[g],
+                                     images.weight.begin() + images.offsets[g + 1]) !=
+                     std::vector<double>(free.weight.begin() + free.offsets[g],
+                                         free.weight.begin() + free.offsets[g + 1]);
+      continue;
+    }
+    ++clamped;
+    double sum = 0;
+    for (int s = images.offsets[g]; s < images.offsets[g + 1]; ++s) sum += images.weight[s];
+    largest_sum = std::max(largest_sum, sum);
+    for (int r = 0; r < 3; ++r) {
+      double u = 0;
+      for (int s = images.offsets[g]; s < images.offsets[g + 1]; ++s)
+        u += images.weight[s] * field(&p.reference[3 * images.particle[s]], r);
+      worst = std::max(worst, std::abs(u - field(&images.position[3 * g], r)));
+    }
+  }
+  std::printf("%d clamped stencils: largest error %.2e; their weights sum to %.3f at most\n",
+              clamped, worst, largest_sum);
+  ASSERT_GT(clamped, 0);
+  EXPECT_EQ(changed, 0);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(largest_sum, 0.9);
+}
+
 // Too few particles for a quadratic fit: a clear error naming the particle, not a NaN stencil.
 TEST(FictitiousParticles, TooFewParticlesForTheFitIsAnError) {
   Particles p;
