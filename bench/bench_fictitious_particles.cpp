@@ -7,15 +7,19 @@
 //   fictitious: full, each family near a free face completed by mirror images of the particles
 //               across it (model/fictitious_particles.hpp), each moved as the quadratic
 //               displacement fitted around its nearest real particle; the calibrations then run
-//               over the completed families.
+//               over the completed families;
+//   second:     fictitious with the second-order rows (model/second_order_row.hpp), each
+//               particle's tet its cell.
 // Prints per resolution and variant: the static tip deflection under gravity over Timoshenko's
 // (as test_cantilever_convergence.cpp), the first bending frequency over Timoshenko's (as
 // test_cantilever_frequency.cpp; inverse iteration), and the highest frequency √λmax(M⁻¹K)
 // (power iteration, a lower bound), which the explicit stable step is inversely proportional to.
 // Dense: about 7 GB and 10 minutes at 4 tets through the thickness.
-// `lattice` instead of `mirror` fills the same shell with a cubic lattice (lattice_images).
+// `lattice` instead of `mirror` fills the same shell with a cubic lattice (lattice_images);
+// `clamped` runs fictitious and second on the beam alone (x ≥ 0, no held block), its clamp face
+// mirrored too, those images moved by clamp_stencils.
 //   bench_fictitious_particles [tets through the thickness, e.g. 2,3,4] [fit radius / δ]
-//                              [mirror|lattice|bending]
+//                              [mirror|lattice|clamped|bending]
 // `bending` prints instead the energy of pure bending of a free bar (see bending()).
 #include <fmt/format.h>
 
