@@ -120,6 +120,17 @@ Vec3 reflect(const Vec3& x, const Plane& p) {
   return x - 2 * (x - p.point).dot(p.normal) * p.normal;
 }
 
+// The particle of `body` nearest to x within 2 horizons, or −1.
+int nearest_of_body(const KdTree& points, const Particles& particles, const Vec3& x, int body,
+                    double horizon) {
+  std::vector<std::pair<std::uint32_t, double>> matches;
+  points.radiusSearch(x.data(), 4 * horizon * horizon, matches,
+                      nanoflann::SearchParams(32, 0, true));
+  for (const auto& m : matches)
+    if (particles.body[m.first] == body) return static_cast<int>(m.first);
+  return -1;
+}
+
 }  // namespace
 
 void add_mirror_images(const Particles& particles, int body, const std::vector<Triangle>& boundary,
@@ -192,21 +203,14 @@ void fit_stencils(const Particles& particles, const std::vector<double>& horizon
     const int body = images.body[g];
     const double horizon = horizon_of_body[body], radius = fit_radius * horizon;
     const Vec3 x(images.position[3 * g], images.position[3 * g + 1], images.position[3 * g + 2]);
-    std::vector<std::pair<std::uint32_t, double>> matches;
-    points.radiusSearch(x.data(), 4 * horizon * horizon, matches,
-                        nanoflann::SearchParams(32, 0, true));
-    int k = -1;
-    for (const auto& m : matches)
-      if (particles.body[m.first] == body) {
-        k = static_cast<int>(m.first);
-        break;
-      }
+    const int k = nearest_of_body(points, particles, x, body, horizon);
     if (k < 0) {
       failure[g] = fmt::format("image {} has no particle of body {} within 2 horizons", g, body);
       continue;
     }
     const Vec3 xk(particles.reference[3 * k], particles.reference[3 * k + 1],
                   particles.reference[3 * k + 2]);
+    std::vector<std::pair<std::uint32_t, double>> matches;
     points.radiusSearch(xk.data(), radius * radius, matches, nanoflann::SearchParams(32, 0, false));
     std::vector<int> members;
     std::vector<Vec3> xi;
@@ -269,14 +273,7 @@ void clamp_stencils(const Particles& particles, const std::vector<double>& horiz
     }
     const int body = images.body[g];
     const double horizon = horizon_of_body[body], radius = fit_radius * horizon;
-    points.radiusSearch(x.data(), 4 * horizon * horizon, matches,
-                        nanoflann::SearchParams(32, 0, true));
-    int k = -1;
-    for (const auto& m : matches)
-      if (particles.body[m.first] == body) {
-        k = static_cast<int>(m.first);
-        break;
-      }
+    const int k = nearest_of_body(points, particles, x, body, horizon);
     if (k < 0)
       throw std::invalid_argument(fmt::format(
           "fictitious particles: image {} has no particle of body {} within 2 horizons", g, body));

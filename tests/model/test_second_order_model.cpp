@@ -7,6 +7,7 @@
 #include <random>
 
 #include "model/second_order_model.hpp"
+#include "support/random_fields.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -21,20 +22,6 @@ Scene block() {
                             .bulk = kBulk,
                             .shear = kShear,
                             .scene = "output: {surface: true}\n"});
-}
-
-// ½ ε:C:ε, C isotropic with κ and μ.
-double strain_energy_density(const Eigen::Matrix3d& e) {
-  const double lame = kBulk - 2 * kShear / 3;
-  return 0.5 * lame * e.trace() * e.trace() + kShear * (e.array() * e.array()).sum();
-}
-
-Eigen::Matrix3d random_matrix(std::mt19937& rng) {
-  std::uniform_real_distribution<double> value(-1, 1);
-  Eigen::Matrix3d A;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) A(r, c) = value(rng);
-  return A;
 }
 
 // y(x) = x + H x + ½ Γ_a(x, x) per component a, x from the block's centre.
@@ -72,7 +59,7 @@ TEST(SecondOrderModel, HomogeneousStrainIsExactOnEveryParticle) {
   EXPECT_GT(images, 0);
   EXPECT_EQ(exact, p.count());
   std::mt19937 rng(1);
-  const Eigen::Matrix3d A = random_matrix(rng), e = 1e-6 * 0.5 * (A + A.transpose());
+  const Eigen::Matrix3d A = test::random_matrix(rng), e = 1e-6 * 0.5 * (A + A.transpose());
   const std::array<Eigen::Matrix3d, 3> none{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
                                             Eigen::Matrix3d::Zero()};
   const std::vector<double> y = deformed(p, e, none);
@@ -80,7 +67,7 @@ TEST(SecondOrderModel, HomogeneousStrainIsExactOnEveryParticle) {
   model->energy_density(y.data(), w.data());
   double worst = 0;
   for (int i = 0; i < p.count(); ++i)
-    worst = std::max(worst, std::abs(w[i] / strain_energy_density(e) - 1));
+    worst = std::max(worst, std::abs(w[i] / test::isotropic_energy_density(e, kBulk, kShear) - 1));
   std::printf("largest relative error of W_i: %.2e\n", worst);
   EXPECT_LT(worst, 1e-4);
 }
@@ -96,19 +83,16 @@ TEST(SecondOrderModel, QuadraticDisplacementStoresTheBlocksContinuumEnergy) {
   const auto model = make_second_order_model(scene, material_points(scene));
   std::mt19937 rng(2);
   for (int trial = 0; trial < 3; ++trial) {
-    std::array<Eigen::Matrix3d, 3> Gamma;
-    for (auto& g : Gamma) {
-      const Eigen::Matrix3d A = random_matrix(rng);
-      g = 1e-5 * (A + A.transpose());
-    }
-    const Eigen::Matrix3d A = random_matrix(rng);
+    const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 1e-5);
+    const Eigen::Matrix3d A = test::random_matrix(rng);
     const Eigen::Matrix3d H = 1e-7 * trial * A;
     std::array<Eigen::Matrix3d, 3> gradient;  // ∂_kε_ab = ½(∂_k∂_b u_a + ∂_k∂_a u_b)
     for (int k = 0; k < 3; ++k)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) gradient[k](a, b) = 0.5 * (Gamma[a](k, b) + Gamma[b](k, a));
     const double volume = kSize[0] * kSize[1] * kSize[2], lame = kBulk - 2 * kShear / 3;
-    double expected = volume * strain_energy_density(0.5 * (H + H.transpose()));
+    double expected =
+        volume * test::isotropic_energy_density(0.5 * (H + H.transpose()), kBulk, kShear);
     for (int k = 0; k < 3; ++k)
       expected += 0.5 * volume / 12 * kSize[k] * kSize[k] *
                   (lame * gradient[k].trace() * gradient[k].trace() +
@@ -126,15 +110,11 @@ TEST(SecondOrderModel, ForcesAreMinusTheGradientOfTheEnergy) {
   const Scene scene = block();
   const auto model = make_second_order_model(scene, material_points(scene));
   std::mt19937 rng(3);
-  std::array<Eigen::Matrix3d, 3> Gamma;
-  for (auto& g : Gamma) {
-    const Eigen::Matrix3d A = random_matrix(rng);
-    g = 0.05 * (A + A.transpose());
-  }
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.05);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
-  const Eigen::Matrix3d H =
-      R * (Eigen::Matrix3d::Identity() + 0.01 * random_matrix(rng)) - Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d H = R * (Eigen::Matrix3d::Identity() + 0.01 * test::random_matrix(rng)) -
+                            Eigen::Matrix3d::Identity();
   const std::vector<double> y = deformed(scene.particles, H, Gamma);
   std::vector<double> f(y.size());
   model->forces(y.data(), f.data());
@@ -156,12 +136,8 @@ TEST(SecondOrderModel, EnergyAndForcesAreObjective) {
   const Scene scene = block();
   const auto model = make_second_order_model(scene, material_points(scene));
   std::mt19937 rng(4);
-  std::array<Eigen::Matrix3d, 3> Gamma;
-  for (auto& g : Gamma) {
-    const Eigen::Matrix3d A = random_matrix(rng);
-    g = 0.05 * (A + A.transpose());
-  }
-  const std::vector<double> y = deformed(scene.particles, 0.01 * random_matrix(rng), Gamma);
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.05);
+  const std::vector<double> y = deformed(scene.particles, 0.01 * test::random_matrix(rng), Gamma);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.3, 1, -0.5).normalized()).toRotationMatrix();
   std::vector<double> turned(y.size()), f(y.size()), turned_f(y.size());

@@ -9,6 +9,7 @@
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
 #include "model/second_order_row.hpp"
+#include "support/random_fields.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -82,12 +83,6 @@ RowData interior_row() {
   return data;
 }
 
-// ½ ε:C:ε, C isotropic with κ and μ.
-double strain_energy_density(const Eigen::Matrix3d& e) {
-  const double lame = kBulk - 2 * kShear / 3;
-  return 0.5 * lame * e.trace() * e.trace() + kShear * (e.array() * e.array()).sum();
-}
-
 // Bond vectors d_b = y(x_i + ξ_b) − y(x_i) of y(x) = x + Hξ + ½ Γ(ξ, ξ), Γ_a = ∂²u_a (symmetric).
 std::vector<double> deformed(const RowData& data, const Eigen::Matrix3d& H,
                              const std::array<Eigen::Matrix3d, 3>& Gamma) {
@@ -100,14 +95,6 @@ std::vector<double> deformed(const RowData& data, const Eigen::Matrix3d& H,
   return d;
 }
 
-Eigen::Matrix3d random_matrix(std::mt19937& rng) {
-  std::uniform_real_distribution<double> value(-1, 1);
-  Eigen::Matrix3d A;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) A(r, c) = value(rng);
-  return A;
-}
-
 // A small homogeneous strain gives V_i ½ε:C:ε: the corrected bonds equal the plain ones (a
 // linear field has no curvature to remove), the calibrations make the row exact, and the cell
 // term vanishes. Relative error O(|ε|) from the nonlinear stretch, and the calibrated weights'
@@ -116,11 +103,11 @@ TEST(SecondOrderRow, HomogeneousStrainGivesTheContinuumEnergy) {
   const RowData data = interior_row();
   std::mt19937 rng(3);
   for (int trial = 0; trial < 4; ++trial) {
-    const Eigen::Matrix3d A = random_matrix(rng), e = 1e-6 * 0.5 * (A + A.transpose());
+    const Eigen::Matrix3d A = test::random_matrix(rng), e = 1e-6 * 0.5 * (A + A.transpose());
     const std::array<Eigen::Matrix3d, 3> none{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
                                               Eigen::Matrix3d::Zero()};
     const std::vector<double> d = deformed(data, e, none);
-    const double expected = data.row.volume * strain_energy_density(e);
+    const double expected = data.row.volume * test::isotropic_energy_density(e, kBulk, kShear);
     EXPECT_NEAR(second_order_row_energy(data.row, d.data(), nullptr) / expected, 1.0, 2e-5)
         << "trial " << trial;
   }
@@ -137,19 +124,17 @@ TEST(SecondOrderRow, QuadraticDisplacementGivesTheCellsEnergy) {
   const auto& c = data.row.cell_moment;
   const double M[3][3] = {{c[0], c[3], c[4]}, {c[3], c[1], c[5]}, {c[4], c[5], c[2]}};
   for (int trial = 0; trial < 4; ++trial) {
-    std::array<Eigen::Matrix3d, 3> Gamma;  // ∂²u_a/∂x_k∂x_l, symmetric in k, l
-    for (auto& g : Gamma) {
-      const Eigen::Matrix3d A = random_matrix(rng);
-      g = 1e-5 * (A + A.transpose());
-    }
-    const Eigen::Matrix3d A = random_matrix(rng);
+    // ∂²u_a/∂x_k∂x_l, symmetric in k, l
+    const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 1e-5);
+    const Eigen::Matrix3d A = test::random_matrix(rng);
     const Eigen::Matrix3d H = trial < 2 ? Eigen::Matrix3d::Zero() : Eigen::Matrix3d(1e-7 * A);
     // ∂_kε_ab = ½(∂_k∂_b u_a + ∂_k∂_a u_b)
     std::array<Eigen::Matrix3d, 3> gradient;
     for (int k = 0; k < 3; ++k)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) gradient[k](a, b) = 0.5 * (Gamma[a](k, b) + Gamma[b](k, a));
-    double expected = data.row.volume * strain_energy_density(0.5 * (H + H.transpose()));
+    double expected =
+        data.row.volume * test::isotropic_energy_density(0.5 * (H + H.transpose()), kBulk, kShear);
     const double lame = kBulk - 2 * kShear / 3;
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l)
@@ -171,12 +156,8 @@ TEST(SecondOrderRow, GradientMatchesFiniteDifferences) {
   std::mt19937 rng(9);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  std::array<Eigen::Matrix3d, 3> Gamma;
-  for (auto& g : Gamma) {
-    const Eigen::Matrix3d A = random_matrix(rng);
-    g = 0.3 * (A + A.transpose());
-  }
-  std::vector<double> d = deformed(data, 0.01 * random_matrix(rng), Gamma);
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.3);
+  std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
   for (int b = 0; b < data.row.bonds; ++b) {
     const Eigen::Vector3d v = R * Eigen::Vector3d(&d[3 * b]);
     for (int a = 0; a < 3; ++a) d[3 * b + a] = v[a];
@@ -206,12 +187,8 @@ TEST(SecondOrderRow, GradientMatchesFiniteDifferences) {
 TEST(SecondOrderRow, HessianMatchesFiniteDifferencesOfTheGradient) {
   const RowData data = interior_row();
   std::mt19937 rng(9);
-  std::array<Eigen::Matrix3d, 3> Gamma;
-  for (auto& g : Gamma) {
-    const Eigen::Matrix3d A = random_matrix(rng);
-    g = 0.3 * (A + A.transpose());
-  }
-  std::vector<double> d = deformed(data, 0.01 * random_matrix(rng), Gamma);
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.3);
+  std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   for (int b = 0; b < data.row.bonds; ++b) {
@@ -246,12 +223,8 @@ TEST(SecondOrderRow, HessianMatchesFiniteDifferencesOfTheGradient) {
 TEST(SecondOrderRow, EnergyIsObjective) {
   const RowData data = interior_row();
   std::mt19937 rng(13);
-  std::array<Eigen::Matrix3d, 3> Gamma;
-  for (auto& g : Gamma) {
-    const Eigen::Matrix3d A = random_matrix(rng);
-    g = 0.3 * (A + A.transpose());
-  }
-  const std::vector<double> d = deformed(data, 0.01 * random_matrix(rng), Gamma);
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.3);
+  const std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
   std::vector<double> gradient(d.size()), turned_gradient(d.size()), turned(d.size());
   const double energy = second_order_row_energy(data.row, d.data(), gradient.data());
   const Eigen::Matrix3d R =
