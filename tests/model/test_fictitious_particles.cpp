@@ -134,6 +134,14 @@ TEST(FictitiousParticles, BothFacesOfAThinPlateGetImages) {
   for (int f = 0; f < 2; ++f) EXPECT_GE(beyond_face[f], 0.75 * near_face[f]) << "face " << f;
 }
 
+// The mirror images of a block of side kSize with their stencils (fit over 1.5 horizons).
+FictitiousParticles fitted_block_images(const Scene& scene) {
+  FictitiousParticles images;
+  add_mirror_images(scene.particles, 0, box_triangles(kSize), scene.horizon_of_body[0], images);
+  fit_stencils(scene.particles, scene.horizon_of_body, 1.5, images);
+  return images;
+}
+
 // A stencil moves its image as the quadratic displacement fitted around its particles: its
 // weights sum to 1 and it reproduces every quadratic displacement field to round-off (relative
 // to the field's size), so that rigid motions move images rigidly. A linear fit, or a basis
@@ -141,9 +149,7 @@ TEST(FictitiousParticles, BothFacesOfAThinPlateGetImages) {
 TEST(FictitiousParticles, StencilsReproduceEveryQuadraticDisplacement) {
   const Scene scene = test::block_scene(kSize, kLambda, 1e6, 1e6);
   const Particles& p = scene.particles;
-  FictitiousParticles images;
-  add_mirror_images(p, 0, box_triangles(kSize), scene.horizon_of_body[0], images);
-  fit_stencils(p, scene.horizon_of_body, 1.5, images);
+  const FictitiousParticles images = fitted_block_images(scene);
   ASSERT_EQ(static_cast<int>(images.offsets.size()), images.count() + 1);
 
   std::mt19937 random(7);
@@ -191,9 +197,7 @@ TEST(FictitiousParticles, StencilsReproduceEveryQuadraticDisplacement) {
 TEST(FictitiousParticles, ClampedStencilsReproduceEveryQuadraticVanishingOnTheFace) {
   const Scene scene = test::block_scene(kSize, kLambda, 1e6, 1e6);
   const Particles& p = scene.particles;
-  FictitiousParticles images;
-  add_mirror_images(p, 0, box_triangles(kSize), scene.horizon_of_body[0], images);
-  fit_stencils(p, scene.horizon_of_body, 1.5, images);
+  FictitiousParticles images = fitted_block_images(scene);
   const FictitiousParticles free = images;
   clamp_stencils(p, scene.horizon_of_body, 1.5, {{0, 0, 0}, {-1, 0, 0}}, images);
   ASSERT_EQ(images.count(), free.count());
