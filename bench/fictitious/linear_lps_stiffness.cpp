@@ -91,8 +91,7 @@ Eigen::MatrixXd row_hessian(const LinearLps& lps, const FictitiousParticles* ima
     }
     // ∂²u_c/∂x_k∂x_l over δ²: the coefficient of ½d_k² (m = 3 + k) or of d_kd_l
     auto second = [&](int c, int k, int l) -> Eigen::RowVectorXd {
-      static const int mixed[3][3] = {{3, 6, 7}, {6, 4, 8}, {7, 8, 5}};
-      return q.row(3 * mixed[k][l] + c) / (delta * delta);
+      return q.row(3 * kSecondDerivative[k][l] + c) / (delta * delta);
     };
     // ∂_k ε_ab = ½(∂_k∂_b u_a + ∂_k∂_a u_b) and ½ Σ_kl M_kl (λ tr ∂_kε tr ∂_lε + 2μ ∂_kε:∂_lε)
     const auto& M = (*lps.cell_moment)[i];

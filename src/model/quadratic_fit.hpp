@@ -13,6 +13,9 @@ namespace fissure {
 
 using QuadraticBasis = Eigen::Matrix<double, 9, 1>;
 
+// The index m of q_m, the coefficient of ∂²f/∂x_k∂x_l, in that basis.
+inline constexpr int kSecondDerivative[3][3] = {{3, 6, 7}, {6, 4, 8}, {7, 8, 5}};
+
 QuadraticBasis quadratic_basis(const Eigen::Vector3d& xi, double scale);
 
 // Per point ξ_j the coefficients a_j with q = Σ_j a_j (f_j − f_0), minimising

@@ -10,9 +10,6 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-// The coefficient q_m of ∂²/∂x_k∂x_l in the basis of quadratic_fit.hpp.
-constexpr int kSecond[3][3] = {{3, 6, 7}, {6, 4, 8}, {7, 8, 5}};
-
 }  // namespace
 
 double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient,
@@ -55,7 +52,7 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
   Mat3 F, G[3], E[3], T[3];
   for (int l = 0; l < 3; ++l) F.col(l) = q[l] / s;
   for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) G[k].col(l) = q[kSecond[k][l]] / (s * s);
+    for (int l = 0; l < 3; ++l) G[k].col(l) = q[kSecondDerivative[k][l]] / (s * s);
   for (int k = 0; k < 3; ++k) E[k] = 0.5 * (F.transpose() * G[k] + G[k].transpose() * F);
   const double lame = row.bulk - 2 * row.shear / 3;
   double cell_energy = 0;
@@ -88,7 +85,7 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
   for (int l = 0; l < 3; ++l) P[l] += dF.col(l) / s;
   for (int k = 0; k < 3; ++k) {
     const Mat3 dG = F * T[k];
-    for (int l = 0; l < 3; ++l) P[kSecond[k][l]] += dG.col(l) / (s * s);
+    for (int l = 0; l < 3; ++l) P[kSecondDerivative[k][l]] += dG.col(l) / (s * s);
   }
   for (int b = 0; b < n; ++b)
     for (int m = 0; m < 9; ++m)

@@ -14,8 +14,6 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-constexpr int kSecond[3][3] = {{3, 6, 7}, {6, 4, 8}, {7, 8, 5}};
-
 // sym(X) = ½(X + Xᵀ)
 Mat3 sym(const Mat3& X) { return 0.5 * (X + X.transpose()); }
 
@@ -31,7 +29,7 @@ Eigen::Matrix<double, 27, 27> cell_hessian(const SecondOrderRow& row, const Eige
   Mat3 F, G[3];
   for (int l = 0; l < 3; ++l) F.col(l) = q.segment<3>(3 * l) / s;
   for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) G[k].col(l) = q.segment<3>(3 * kSecond[k][l]) / (s * s);
+    for (int l = 0; l < 3; ++l) G[k].col(l) = q.segment<3>(3 * kSecondDerivative[k][l]) / (s * s);
   Mat3 T[3];
   for (int k = 0; k < 3; ++k) {
     T[k].setZero();
@@ -46,7 +44,7 @@ Eigen::Matrix<double, 27, 27> cell_hessian(const SecondOrderRow& row, const Eige
     if (m < 3) dF[p](a, m) = 1 / s;
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l)
-        if (kSecond[k][l] == m) dG[p][k](a, l) = 1 / (s * s);
+        if (kSecondDerivative[k][l] == m) dG[p][k](a, l) = 1 / (s * s);
   }
   Mat3 dE[27][3];
   for (int p = 0; p < 27; ++p)
