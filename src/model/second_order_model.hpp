@@ -9,7 +9,8 @@
 //
 // Not yet a config option: a clamp needs images of its own (a held block behind the clamp face
 // makes the clamp soft, +9% tip deflection at 2 tets; docs/model.md), which the constraints do
-// not describe yet. Elastic and isotropic, on one rank, explicit only: no stiffness for implicit
+// not describe yet, and a cantilever beyond its clamp stays 1.0% soft at every resolution, not
+// explained yet. Elastic and isotropic, on one rank, explicit only: no stiffness for implicit
 // integrators, no fracture, no plasticity.
 #include <array>
 #include <memory>
