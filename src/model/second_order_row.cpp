@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <vector>
 
 namespace fissure {
 
@@ -23,25 +24,31 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
     const Vec3 db(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
     for (int m = 0; m < 9; ++m) q[m] += row.fit[b](m) * db;
   }
-  // r_b = d_b − Σ_{m≥3} φ_m(ξ_b/s) q_m: the bond less the fitted curvature
-  auto corrected = [&](int b, QuadraticBasis& phi) {
-    phi = quadratic_basis(Vec3(row.xi[3 * b], row.xi[3 * b + 1], row.xi[3 * b + 2]), s);
-    Vec3 r(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
-    for (int m = 3; m < 9; ++m) r -= phi(m) * q[m];
-    return r;
+  // per bond, once: φ(ξ_b/s), and r_b = d_b − Σ_{m≥3} φ_m q_m (the bond less the fitted
+  // curvature) as its length and direction; scratch kept per thread, grown only
+  struct Corrected {
+    QuadraticBasis phi;
+    Vec3 unit;
+    double length;
   };
-  QuadraticBasis phi;
+  thread_local std::vector<Corrected> bond;
+  bond.resize(n);
   double theta = 0;  // θ = Σ c ẽ V, ẽ_b = |r_b| − |ξ_b| (Eq 6)
-  for (int b = 0; b < n; ++b)
-    theta += row.dilatation_weight[b] * (corrected(b, phi).norm() - row.length[b]) *
-             row.member_volume[b];
+  for (int b = 0; b < n; ++b) {
+    bond[b].phi = quadratic_basis(Vec3(row.xi[3 * b], row.xi[3 * b + 1], row.xi[3 * b + 2]), s);
+    Vec3 r(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
+    for (int m = 3; m < 9; ++m) r -= bond[b].phi(m) * q[m];
+    bond[b].length = r.norm();
+    bond[b].unit = r / bond[b].length;
+    theta += row.dilatation_weight[b] * (bond[b].length - row.length[b]) * row.member_volume[b];
+  }
   if (dilatation) *dilatation = theta;
   // ê_b and the deviatoric sums (Eq 8): Σ w ê² V and Σ w ê |ξ| V
+  auto hat = [&](int b) { return bond[b].length - row.length[b] - theta * row.length[b] / 3; };
   double squares = 0, moment = 0;
   for (int b = 0; b < n; ++b) {
-    const double hat = corrected(b, phi).norm() - row.length[b] - theta * row.length[b] / 3;
-    squares += row.deviatoric_weight[b] * hat * hat * row.member_volume[b];
-    moment += row.deviatoric_weight[b] * hat * row.length[b] * row.member_volume[b];
+    squares += row.deviatoric_weight[b] * hat(b) * hat(b) * row.member_volume[b];
+    moment += row.deviatoric_weight[b] * hat(b) * row.length[b] * row.member_volume[b];
   }
   const double bond_energy =
       row.volume * (0.5 * row.bulk * theta * theta + 0.5 * row.deviatoric_modulus * squares);
@@ -71,14 +78,12 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
   std::array<Vec3, 9> P;
   for (Vec3& v : P) v.setZero();
   for (int b = 0; b < n; ++b) {
-    const Vec3 r = corrected(b, phi);
-    const double hat = r.norm() - row.length[b] - theta * row.length[b] / 3;
     const double t = row.volume * row.member_volume[b] *
                      (row.dilatation_weight[b] * pressure +
-                      row.deviatoric_modulus * row.deviatoric_weight[b] * hat);
-    const Vec3 g = t / r.norm() * r;
+                      row.deviatoric_modulus * row.deviatoric_weight[b] * hat(b));
+    const Vec3 g = t * bond[b].unit;
     for (int a = 0; a < 3; ++a) gradient[3 * b + a] = g[a];
-    for (int m = 3; m < 9; ++m) P[m] -= phi(m) * g;
+    for (int m = 3; m < 9; ++m) P[m] -= bond[b].phi(m) * g;
   }
   Mat3 dF = Mat3::Zero();
   for (int k = 0; k < 3; ++k) dF += G[k] * T[k];
