@@ -33,6 +33,7 @@
 
 #include "fictitious/lattice_images.hpp"
 #include "fictitious/linear_lps_stiffness.hpp"
+#include "mesh/tet_geometry.hpp"
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
 #include "model/fictitious_particles.hpp"
@@ -63,26 +64,13 @@ struct Figures {
   double largest_l1 = 0, mean_l1 = 0;
 };
 
-// M_i = ∫ (x − x_i)(x − x_i)ᵀ over particle i's tet = V/20 Σ_a d_a d_aᵀ, d_a its corners from
-// its barycentre x_i (xx, yy, zz, xy, xz, yz); the scene must keep its tet mesh.
+// M_i, the second moment of particle i's tet about its barycentre (mesh/tet_geometry.hpp); the
+// scene must keep its tet mesh.
 std::vector<std::array<double, 6>> cell_moments(const Scene& scene) {
   std::vector<std::array<double, 6>> moments(scene.particles.count());
   for (const BodyTetMesh& body : scene.tet_meshes)
-    for (int t = 0; t < body.mesh.tet_count(); ++t) {
-      const int i = body.particle[t];
-      if (i < 0) continue;
-      std::array<double, 6> m{};
-      for (int c = 0; c < 4; ++c) {
-        double d[3];
-        for (int a = 0; a < 3; ++a)
-          d[a] = body.mesh.vertices[3 * body.mesh.tets[4 * t + c] + a] -
-                 scene.particles.reference[3 * i + a];
-        m[0] += d[0] * d[0], m[1] += d[1] * d[1], m[2] += d[2] * d[2];
-        m[3] += d[0] * d[1], m[4] += d[0] * d[2], m[5] += d[1] * d[2];
-      }
-      for (double& v : m) v *= scene.particles.volume[i] / 20;
-      moments[i] = m;
-    }
+    for (int t = 0; t < body.mesh.tet_count(); ++t)
+      if (body.particle[t] >= 0) moments[body.particle[t]] = tet_second_moment(body.mesh, t);
   return moments;
 }
 

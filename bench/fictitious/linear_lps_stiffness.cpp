@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "model/quadratic_fit.hpp"
+#include "model/second_order_row.hpp"
 
 namespace fissure::bench {
 
@@ -51,6 +52,44 @@ Eigen::MatrixXd row_hessian(const LinearLps& lps, const FictitiousParticles* ima
   auto xi = [&](int b, double* out) {
     for (int a = 0; a < 3; ++a) out[a] = x[3 * member[b] + a] - x[3 * i + a];
   };
+  if (lps.cell_moment) {
+    // the model's own row (model/second_order_row.hpp), whose Hessian at the reference is the
+    // linearised energy's over the bond vectors d_b = u_j − u_i + ξ_b
+    std::vector<double> bond_xi(3 * bonds), c(bonds), w(bonds), member_volume(bonds);
+    std::vector<Eigen::Vector3d> members(bonds);
+    std::vector<double> fit_weight(bonds);
+    double delta = 0;
+    for (int b = off[i]; b < off[i + 1]; ++b) delta = std::max(delta, length[b]);
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const int r = b - off[i];
+      xi(b, &bond_xi[3 * r]);
+      members[r] = Eigen::Vector3d(&bond_xi[3 * r]);
+      c[r] = lps.dilatation_weight[b], w[r] = lps.deviatoric_weight[b];
+      member_volume[r] = volume[member[b]];
+      fit_weight[r] = delta / length[b] * volume[member[b]];
+    }
+    std::vector<QuadraticBasis> fit;
+    if (!quadratic_fit(members, fit_weight, delta, fit))
+      throw std::invalid_argument("second order: a family does not determine a quadratic");
+    const SecondOrderRow row{.bonds = bonds,
+                             .xi = bond_xi.data(),
+                             .length = length.data() + off[i],
+                             .dilatation_weight = c.data(),
+                             .deviatoric_weight = w.data(),
+                             .member_volume = member_volume.data(),
+                             .fit = fit.data(),
+                             .scale = delta,
+                             .volume = volume[i],
+                             .bulk = lps.bulk,
+                             .shear = lps.shear,
+                             .deviatoric_modulus = lps.weighted_volume[i] > 0
+                                                       ? 15 * lps.shear / lps.weighted_volume[i]
+                                                       : 0,
+                             .cell_moment = (*lps.cell_moment)[i]};
+    Eigen::MatrixXd hessian;
+    second_order_row_hessian(row, bond_xi.data(), hessian);
+    return difference.transpose() * hessian * difference;
+  }
   // e_ij = ξ̂·(u_j − u_i)
   Eigen::MatrixXd extension(bonds, columns);
   for (int b = off[i]; b < off[i + 1]; ++b) {
@@ -60,62 +99,6 @@ Eigen::MatrixXd row_hessian(const LinearLps& lps, const FictitiousParticles* ima
     extension.row(r) = (v[0] * difference.row(3 * r) + v[1] * difference.row(3 * r + 1) +
                         v[2] * difference.row(3 * r + 2)) /
                        length[b];
-  }
-  Eigen::MatrixXd gradient_energy;
-  if (lps.cell_moment) {
-    // the fit u_j − u_i ≈ Σ_m q_m φ_m(ξ/δ) (model/quadratic_fit.hpp), weights ω V_j
-    double delta = 0;
-    for (int b = off[i]; b < off[i + 1]; ++b) delta = std::max(delta, length[b]);
-    std::vector<Eigen::Vector3d> members(bonds);
-    std::vector<double> fit_weight(bonds);
-    std::vector<QuadraticBasis> phi(bonds), a;
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      xi(b, members[b - off[i]].data());
-      phi[b - off[i]] = quadratic_basis(members[b - off[i]], delta);
-      fit_weight[b - off[i]] = delta / length[b] * volume[member[b]];
-    }
-    if (!quadratic_fit(members, fit_weight, delta, a))
-      throw std::invalid_argument("second order: a family does not determine a quadratic");
-    // coefficients q_m,a as rows over the nodes: q(3m + a)
-    Eigen::MatrixXd q = Eigen::MatrixXd::Zero(27, columns);
-    for (int r = 0; r < bonds; ++r)
-      for (int m = 0; m < 9; ++m)
-        for (int c = 0; c < 3; ++c) q.row(3 * m + c) += a[r](m) * difference.row(3 * r + c);
-    // e_ij − ξ̂·Q(ξ)
-    for (int r = 0; r < bonds; ++r) {
-      double v[3];
-      xi(off[i] + r, v);
-      for (int m = 3; m < 9; ++m)
-        for (int c = 0; c < 3; ++c)
-          extension.row(r) -= phi[r](m) * v[c] / length[off[i] + r] * q.row(3 * m + c);
-    }
-    // ∂²u_c/∂x_k∂x_l over δ²: the coefficient of ½d_k² (m = 3 + k) or of d_kd_l
-    auto second = [&](int c, int k, int l) -> Eigen::RowVectorXd {
-      return q.row(3 * kSecondDerivative[k][l] + c) / (delta * delta);
-    };
-    // ∂_k ε_ab = ½(∂_k∂_b u_a + ∂_k∂_a u_b) and ½ Σ_kl M_kl (λ tr ∂_kε tr ∂_lε + 2μ ∂_kε:∂_lε)
-    const auto& M = (*lps.cell_moment)[i];
-    const double moment[3][3] = {{M[0], M[3], M[4]}, {M[3], M[1], M[5]}, {M[4], M[5], M[2]}};
-    const double lame = lps.bulk - 2 * lps.shear / 3;
-    std::array<std::array<Eigen::RowVectorXd, 9>, 3> strain_gradient;
-    std::array<Eigen::RowVectorXd, 3> trace;
-    for (int k = 0; k < 3; ++k) {
-      trace[k] = Eigen::RowVectorXd::Zero(columns);
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) {
-          strain_gradient[k][3 * a + b] = 0.5 * (second(a, k, b) + second(b, k, a));
-          if (a == b) trace[k] += strain_gradient[k][3 * a + b];
-        }
-    }
-    gradient_energy = Eigen::MatrixXd::Zero(columns, columns);
-    for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) {
-        if (moment[k][l] == 0) continue;
-        gradient_energy += moment[k][l] * lame * trace[k].transpose() * trace[l];
-        for (int ab = 0; ab < 9; ++ab)
-          gradient_energy += moment[k][l] * 2 * lps.shear * strain_gradient[k][ab].transpose() *
-                             strain_gradient[l][ab];
-      }
   }
   Eigen::RowVectorXd dilatation = Eigen::RowVectorXd::Zero(columns);  // θ_i
   for (int b = off[i]; b < off[i + 1]; ++b)
@@ -129,7 +112,6 @@ Eigen::MatrixXd row_hessian(const LinearLps& lps, const FictitiousParticles* ima
   Eigen::MatrixXd H = lps.bulk * dilatation.transpose() * dilatation;
   H.noalias() += B * extension.transpose() * weight.asDiagonal() * extension;
   H *= volume[i];
-  if (lps.cell_moment) H += gradient_energy;
   return H;
 }
 

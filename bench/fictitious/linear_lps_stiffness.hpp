@@ -7,13 +7,10 @@
 // no such members). Rows and columns are the degrees of freedom dof[i] ≥ 0 of the real particles
 // (−1: held at zero).
 //
-// With cell_moment (second order, issue 15): each row's extensions lose the second-order part
-// of the displacement fitted over its family, e_ij − ξ̂·Q_i(ξ) with u_j − u_i ≈ H_i ξ + Q_i(ξ)
-// (Q quadratic; the fit of fictitious_particles.hpp, weights ω V_j), so that a quadratic
-// displacement gives row i the homogeneous strain at x_i; and the energy gains the cell's share
-// of the fitted strain gradient, ½ Σ_kl M_kl ∂_kε : C : ∂_lε with M = ∫_cell (x − x_i)(x − x_i)ᵀ
-// (the particle's tet about its barycentre). A quadratic displacement then stores exactly the
-// continuum's energy of the cells. Still a sum of squares.
+// With cell_moment (second order, issue 15): each row's energy is the second-order model's
+// (model/second_order_row.hpp: the bonds less their fitted curvature, plus the cell's share of
+// the strain gradient), its Hessian at the reference state; a quadratic displacement then stores
+// exactly the continuum's energy of the cells.
 #include <Eigen/Dense>
 #include <array>
 #include <vector>
