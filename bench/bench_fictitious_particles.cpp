@@ -74,19 +74,6 @@ std::vector<std::array<double, 6>> cell_moments(const Scene& scene) {
   return moments;
 }
 
-// The real particles followed by the fictitious ones, all in body 0.
-Particles extended(const Particles& real, const FictitiousParticles& images) {
-  Particles p = real;
-  for (int g = 0; g < images.count(); ++g) {
-    p.reference.insert(p.reference.end(), &images.position[3 * g], &images.position[3 * g + 3]);
-    p.velocity.insert(p.velocity.end(), {0.0, 0.0, 0.0});
-    p.volume.push_back(images.volume[g]);
-    p.mass.push_back(0);
-    p.body.push_back(0);
-  }
-  return p;
-}
-
 // A scene's particles with the variant's fictitious particles (beyond the box's free faces) and
 // weights over the families they complete.
 struct Discretisation {
@@ -111,25 +98,18 @@ Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxF
     if (kind == Images::clamped)
       clamp_stencils(real, scene.horizon_of_body, fit_radius, {{0, 0, 0}, {-1, 0, 0}}, d.images);
   }
-  d.particles = extended(real, d.images);
+  d.particles = with_images(real, d.images);
   d.families =
       d.images.count() ? build_families(d.particles, scene.horizon_of_body) : scene.families;
-  const auto& off = d.families.offsets;
-  std::vector<float> omega(d.families.directed_bonds());
-  d.m.assign(d.particles.count(), 0.0);
-  for (int i = 0; i < d.particles.count(); ++i)
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      const double length = d.families.reference_length[b];
-      omega[b] = static_cast<float>(delta / length);  // Eq 5
-      d.m[i] += double(omega[b]) * length * length * d.particles.volume[d.families.neighbors[b]];
-    }
-  d.c = dilatation_weights(d.particles, d.families, omega, d.m);
-  d.w = omega;
-  if (variant != Variant::dilatation)
-    d.w = deviatoric_weights(d.particles, d.families, omega,
-                             std::vector<double>(d.particles.count(), Cantilever::shear), d.m,
-                             {isotropic_deviatoric_shape()})
-              .weights;
+  FamilyWeights weights = isotropic_family_weights(d.particles, d.families, scene.horizon_of_body);
+  d.c = std::move(weights.dilatation);
+  d.m = std::move(weights.weighted_volume);
+  d.w = variant == Variant::dilatation
+            ? weights.omega
+            : deviatoric_weights(d.particles, d.families, weights.omega,
+                                 std::vector<double>(d.particles.count(), Cantilever::shear), d.m,
+                                 {isotropic_deviatoric_shape()})
+                  .weights;
   return d;
 }
 

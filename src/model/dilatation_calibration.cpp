@@ -66,4 +66,23 @@ std::vector<float> dilatation_weights(const Particles& particles, const Families
   return weights;
 }
 
+FamilyWeights isotropic_family_weights(const Particles& particles, const Families& families,
+                                       const std::vector<double>& horizon_of_body) {
+  const auto& off = families.offsets;
+  FamilyWeights f;
+  f.omega.resize(families.directed_bonds());
+  f.weighted_volume.assign(particles.count(), 0.0);
+  for (int i = 0; i < particles.count(); ++i) {
+    const double delta = horizon_of_body[particles.body[i]];
+    for (int b = off[i]; b < off[i + 1]; ++b) {
+      const double length = families.reference_length[b];
+      f.omega[b] = static_cast<float>(delta / length);  // Eq 5
+      f.weighted_volume[i] +=
+          double(f.omega[b]) * length * length * particles.volume[families.neighbors[b]];
+    }
+  }
+  f.dilatation = dilatation_weights(particles, families, f.omega, f.weighted_volume);
+  return f;
+}
+
 }  // namespace fissure

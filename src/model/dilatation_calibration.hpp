@@ -23,4 +23,13 @@ std::vector<float> dilatation_weights(const Particles& particles, const Families
                                       const std::vector<float>& omega,
                                       const std::vector<double>& weighted_volume);
 
+// An isotropic body's plain influence ω = δ/|ξ| (Eq 5, single precision as the model keeps it),
+// m_i = Σ_j ω |ξ|² V_j, and the dilatation weights c over them, for every row of `families`.
+struct FamilyWeights {
+  std::vector<float> omega, dilatation;
+  std::vector<double> weighted_volume;
+};
+FamilyWeights isotropic_family_weights(const Particles& particles, const Families& families,
+                                       const std::vector<double>& horizon_of_body);
+
 }  // namespace fissure

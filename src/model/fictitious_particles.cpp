@@ -313,6 +313,19 @@ void clamp_stencils(const Particles& particles, const std::vector<double>& horiz
   images = std::move(out);
 }
 
+Particles with_images(const Particles& particles, const FictitiousParticles& images) {
+  Particles extended = particles;
+  for (int g = 0; g < images.count(); ++g) {
+    extended.reference.insert(extended.reference.end(), &images.position[3 * g],
+                              &images.position[3 * g + 3]);
+    extended.velocity.insert(extended.velocity.end(), {0.0, 0.0, 0.0});
+    extended.volume.push_back(images.volume[g]);
+    extended.mass.push_back(0);
+    extended.body.push_back(images.body[g]);
+  }
+  return extended;
+}
+
 std::array<double, 2> stencil_amplification(const FictitiousParticles& images) {
   double largest = 0, mean = 0;
   for (int g = 0; g < images.count(); ++g) {

@@ -66,6 +66,10 @@ struct ClampPlane {
 void clamp_stencils(const Particles& particles, const std::vector<double>& horizon_of_body,
                     double fit_radius, const ClampPlane& plane, FictitiousParticles& images);
 
+// The particles followed by the images (at rest, without mass): the points whose families the
+// images complete.
+Particles with_images(const Particles& particles, const FictitiousParticles& images);
+
 // The largest and the mean Σ_s |weight[s]| of the stencils: how much an image amplifies a
 // displacement of its particles (1 for an interpolation).
 std::array<double, 2> stencil_amplification(const FictitiousParticles& images);

@@ -30,38 +30,23 @@ SecondOrderModel::SecondOrderModel(const Particles& particles, const Families& f
         "the second-order model is isotropic only (no material.anisotropy)");
   if (static_cast<int>(cell_moment_.size()) != n)
     throw std::invalid_argument("the second-order model needs a cell moment per particle");
-  extended_ = particles;
-  for (int g = 0; g < count; ++g) {
-    extended_.reference.insert(extended_.reference.end(), &images_.position[3 * g],
-                               &images_.position[3 * g + 3]);
-    extended_.velocity.insert(extended_.velocity.end(), {0.0, 0.0, 0.0});
-    extended_.volume.push_back(images_.volume[g]);
-    extended_.mass.push_back(0);
-    extended_.body.push_back(images_.body[g]);
-  }
+  extended_ = with_images(particles, images_);
   extended_families_ = build_families(extended_, horizon_of_body);
   const int total = extended_.count();
   const auto& off = extended_families_.offsets;
   const auto& member = extended_families_.neighbors;
   const auto& length = extended_families_.reference_length;
 
-  // Eq 5 and m_i = Σ_j ω |ξ|² V_j over the completed families, then both calibrations over them
-  std::vector<float> omega(extended_families_.directed_bonds());
-  std::vector<double> weighted_volume(total, 0.0), shear(total);
-  for (int i = 0; i < total; ++i) {
-    const double delta = horizon_of_body[extended_.body[i]];
-    for (int b = off[i]; b < off[i + 1]; ++b) {
-      omega[b] = static_cast<float>(delta / length[b]);
-      weighted_volume[i] += double(omega[b]) * length[b] * length[b] * extended_.volume[member[b]];
-    }
-    // an image's moduli are those of its body, which its stencil's particles share
+  // both calibrations over the completed families; an image's moduli are those of its body,
+  // which its stencil's particles share
+  const FamilyWeights weights =
+      isotropic_family_weights(extended_, extended_families_, horizon_of_body);
+  std::vector<double> shear(total);
+  for (int i = 0; i < total; ++i)
     shear[i] = materials_.shear_modulus[i < n ? i : images_.particle[images_.offsets[i - n]]];
-  }
-  const std::vector<float> c =
-      dilatation_weights(extended_, extended_families_, omega, weighted_volume);
   const std::vector<DeviatoricShape> shapes(horizon_of_body.size(), isotropic_deviatoric_shape());
-  const DeviatoricCalibration calibration =
-      deviatoric_weights(extended_, extended_families_, omega, shear, weighted_volume, shapes);
+  const DeviatoricCalibration calibration = deviatoric_weights(
+      extended_, extended_families_, weights.omega, shear, weights.weighted_volume, shapes);
 
   // the particles' rows: what second_order_row.hpp reads per bond, and the fit over the family
   const int bonds = off[n];
@@ -83,7 +68,7 @@ SecondOrderModel::SecondOrderModel(const Particles& particles, const Families& f
       Eigen::Vector3d v;
       for (int a = 0; a < 3; ++a)
         xi_[3 * b + a] = v[a] = extended_.reference[3 * j + a] - extended_.reference[3 * i + a];
-      dilatation_weight_[b] = c[b];
+      dilatation_weight_[b] = weights.dilatation[b];
       deviatoric_weight_[b] = calibration.weights[b];
       member_volume_[b] = extended_.volume[j];
       xi.push_back(v), fit_weight.push_back(delta / length[b] * extended_.volume[j]);
@@ -97,8 +82,9 @@ SecondOrderModel::SecondOrderModel(const Particles& particles, const Families& f
     }
     std::copy(a.begin(), a.end(), fit_.begin() + off[i]);
     scale_[i] = delta;
-    deviatoric_modulus_[i] =
-        weighted_volume[i] > 0 ? 15 * materials_.shear_modulus[i] / weighted_volume[i] : 0;
+    deviatoric_modulus_[i] = weights.weighted_volume[i] > 0
+                                 ? 15 * materials_.shear_modulus[i] / weights.weighted_volume[i]
+                                 : 0;
   }
   for (const std::string& f : failure)
     if (!f.empty()) throw std::invalid_argument("second-order model: " + f);
