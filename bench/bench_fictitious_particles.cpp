@@ -19,8 +19,11 @@
 // `clamped` runs fictitious and second on the beam alone (x ≥ 0, no held block), its clamp face
 // mirrored too, those images moved by clamp_stencils.
 //   bench_fictitious_particles [tets through the thickness, e.g. 2,3,4] [fit radius / δ]
-//                              [mirror|lattice|clamped|bending]
-// `bending` prints instead the energy of pure bending of a free bar (see bending()).
+//                              [mirror|lattice|clamped|bending|equilibrium] [α]
+// `bending` prints instead the energy of pure bending of a free bar (see bending()),
+// `equilibrium` a free bar's compliance in bending and stretch under end loads (see
+// equilibrium()). α is the second-order rows' stabilisation (default kSecondOrderStabilization).
+
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -37,6 +40,7 @@
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
 #include "model/fictitious_particles.hpp"
+#include "model/second_order_row.hpp"
 #include "support/beam.hpp"
 #include "support/scenes.hpp"
 
@@ -113,7 +117,7 @@ Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxF
   return d;
 }
 
-Figures run(int tets, Variant variant, double fit_radius, Images kind) {
+Figures run(int tets, Variant variant, double fit_radius, Images kind, double stabilization) {
   const double resolution = Cantilever::side / tets, gravity = 9.81;
   // clamped: the beam alone, x ≥ 0, its clamp face x = 0 a face with images behind it
   const bool clamped = kind == Images::clamped;
@@ -158,7 +162,8 @@ Figures run(int tets, Variant variant, double fit_radius, Images kind) {
                              m,
                              Cantilever::bulk,
                              Cantilever::shear,
-                             moments.empty() ? nullptr : &moments};
+                             moments.empty() ? nullptr : &moments,
+                             variant == Variant::second ? stabilization : 0.0};
   Eigen::MatrixXd K =
       bench::linear_lps_stiffness(lps, images.count() ? &images : nullptr, dof, 3 * free);
   Eigen::VectorXd mass(3 * free), load = Eigen::VectorXd::Zero(3 * free);
@@ -214,7 +219,7 @@ Figures run(int tets, Variant variant, double fit_radius, Images kind) {
 // u_x = κxz, u_y = −νκyz, u_z = −κ(x² + ν(z² − y²))/2 about its centre: the energy the model
 // stores over ½EIκ² per length, the bending stiffness without clamp, load or tip, and the
 // particles' own quadrature Σ V_i ½Eκ²z_i² over the same.
-void bending(const std::vector<int>& tets, double fit_radius) {
+void bending(const std::vector<int>& tets, double fit_radius, double stabilization) {
   const double length = 0.4, side = Cantilever::side, curvature = 1e-3;
   const double E = test::youngs_modulus(Cantilever::bulk, Cantilever::shear);
   const double nu = test::poisson_ratio(Cantilever::bulk, Cantilever::shear);
@@ -253,10 +258,99 @@ void bending(const std::vector<int>& tets, double fit_radius) {
                                  d.m,
                                  Cantilever::bulk,
                                  Cantilever::shear,
-                                 v == Variant::second ? &moments : nullptr};
+                                 v == Variant::second ? &moments : nullptr,
+                                 v == Variant::second ? stabilization : 0.0};
       fmt::print("{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:16.4f}  {:20.4f}\n", t, side / t, name(v),
                  scene.particles.count(), d.images.count(),
                  bench::linear_lps_energy(lps, u) / continuum, quadrature / continuum);
+      std::fflush(stdout);
+    }
+  }
+}
+
+// A free 1.0 × 0.1 × 0.1 m bar (every face free) loaded over its end zones x < 0.1 m and
+// x > 0.9 m by axial forces proportional to z V_i (a moment M on each end) or to V_i (a force
+// N): the compliance of its middle, 0.3 ≤ x ≤ 0.7 m, where by Saint-Venant the continuum is in
+// pure bending or uniaxial stress, over the continuum's, from the fit u_x ≈ a + b x + c z + k xz:
+// k/(M/EI) and b/(N/EA). Every variant with images stores the continuum's energy of both fields
+// (`bending` above; the calibrations), but its particles may relax away from them under load,
+// which these figures measure. Dense, with the rigid motions penalised: seconds at 2 tets, a
+// minute at 3, about 3 GB and a few minutes per variant at 4.
+void equilibrium(const std::vector<int>& tets, double fit_radius, double stabilization) {
+  const double length = 1.0, side = Cantilever::side, zone = 0.1;
+  const double E = test::youngs_modulus(Cantilever::bulk, Cantilever::shear);
+  fmt::print(
+      "tets  lambda_m  variant     particles  images  bending_compliance/continuum  "
+      "stretch_compliance/continuum\n");
+  for (int t : tets) {
+    const Scene scene = test::block_scene({.size = {length, side, side},
+                                           .resolution = side / t,
+                                           .bulk = Cantilever::bulk,
+                                           .shear = Cantilever::shear,
+                                           .scene = "output: {surface: true}\n"});
+    const auto moments = cell_moments(scene);
+    const bench::BoxFaces box{
+        {0, 0, 0}, {length, side, side}, {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}}};
+    const int n = scene.particles.count();
+    const auto& x = scene.particles.reference;
+    std::vector<int> dof(n);
+    for (int i = 0; i < n; ++i) dof[i] = i;
+    // the six rigid motions about the centre, each a column
+    Eigen::MatrixXd rigid = Eigen::MatrixXd::Zero(3 * n, 6);
+    for (int i = 0; i < n; ++i) {
+      const double px = x[3 * i] - 0.5 * length, py = x[3 * i + 1] - 0.5 * side,
+                   pz = x[3 * i + 2] - 0.5 * side;
+      for (int a = 0; a < 3; ++a) rigid(3 * i + a, a) = 1;
+      rigid(3 * i + 1, 3) = -pz, rigid(3 * i + 2, 3) = py;
+      rigid(3 * i, 4) = pz, rigid(3 * i + 2, 4) = -px;
+      rigid(3 * i, 5) = -py, rigid(3 * i + 1, 5) = px;
+    }
+    for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious, Variant::second}) {
+      const Discretisation d = discretise(scene, v, box, fit_radius, Images::mirror);
+      const bench::LinearLps lps{d.particles,
+                                 d.families,
+                                 n,
+                                 d.c,
+                                 d.w,
+                                 d.m,
+                                 Cantilever::bulk,
+                                 Cantilever::shear,
+                                 v == Variant::second ? &moments : nullptr,
+                                 v == Variant::second ? stabilization : 0.0};
+      Eigen::MatrixXd K =
+          bench::linear_lps_stiffness(lps, d.images.count() ? &d.images : nullptr, dof, 3 * n);
+      // the loads below do no work on a rigid motion, so penalising those changes nothing else
+      K += 1e-3 * K.diagonal().mean() * rigid * rigid.transpose();
+      const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(K);
+      if (llt.info() != Eigen::Success)
+        throw std::runtime_error(fmt::format("{}: the stiffness is singular", name(v)));
+      double compliance[2];
+      for (int mode = 0; mode < 2; ++mode) {
+        // mode 0: f_x ∝ ±z V_i, a moment M = EI κ per end; mode 1: f_x ∝ ±V_i, N = EA ε
+        const double strain = 1e-3, I = std::pow(side, 4) / 12, A = side * side;
+        Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * n);
+        double resultant = 0;  // Σ over both ends of shape² V: twice one end's moment or force
+        for (int i = 0; i < n; ++i) {
+          if (x[3 * i] > zone && x[3 * i] < length - zone) continue;
+          const double shape = mode == 0 ? x[3 * i + 2] - 0.5 * side : 1.0;
+          f(3 * i) = (x[3 * i] < zone ? -1 : 1) * shape * scene.particles.volume[i];
+          resultant += shape * shape * scene.particles.volume[i];
+        }
+        f *= 2 * (mode == 0 ? E * I * strain : E * A * strain) / resultant;
+        const Eigen::VectorXd u = llt.solve(f);
+        Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+        Eigen::Vector4d right = Eigen::Vector4d::Zero();
+        for (int i = 0; i < n; ++i) {
+          const double px = x[3 * i] - 0.5 * length, pz = x[3 * i + 2] - 0.5 * side;
+          if (std::abs(px) > 0.2 * length) continue;
+          const Eigen::Vector4d basis(1, px, pz, px * pz);
+          normal += basis * basis.transpose(), right += basis * u(3 * i);
+        }
+        const Eigen::Vector4d c = normal.ldlt().solve(right);
+        compliance[mode] = (mode == 0 ? c(3) : c(1)) / strain;
+      }
+      fmt::print("{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:28.4f}  {:28.4f}\n", t, side / t, name(v),
+                 n, d.images.count(), compliance[0], compliance[1]);
       std::fflush(stdout);
     }
   }
@@ -273,16 +367,22 @@ int main(int argc, char** argv) {
   }
   const double fit_radius = argc > 2 ? std::atof(argv[2]) : 1.5;
   const std::string images = argc > 3 ? argv[3] : "mirror";
-  if (images == "bending") {
-    bending(tets, fit_radius);
-    return 0;
-  }
-  if (tets.empty() || fit_radius <= 0 ||
-      (images != "mirror" && images != "lattice" && images != "clamped")) {
+  const double stabilization = argc > 4 ? std::atof(argv[4]) : kSecondOrderStabilization;
+  if (tets.empty() || fit_radius <= 0 || !(stabilization >= 0) ||
+      (images != "mirror" && images != "lattice" && images != "clamped" && images != "bending" &&
+       images != "equilibrium")) {
     fmt::print(stderr,
                "usage: bench_fictitious_particles [2,3,4] [fit radius / horizon > 0] "
-               "[mirror|lattice|clamped|bending]\n");
+               "[mirror|lattice|clamped|bending|equilibrium] [stabilisation α ≥ 0]\n");
     return 2;
+  }
+  if (images == "bending") {
+    bending(tets, fit_radius, stabilization);
+    return 0;
+  }
+  if (images == "equilibrium") {
+    equilibrium(tets, fit_radius, stabilization);
+    return 0;
   }
   const Images kind = images == "lattice"   ? Images::lattice
                       : images == "clamped" ? Images::clamped
@@ -297,7 +397,7 @@ int main(int argc, char** argv) {
       // without a held block only the images hold the beam; the second order needs its cells
       if (kind == Images::clamped && v != Variant::fictitious && v != Variant::second) continue;
       const auto start = std::chrono::steady_clock::now();
-      const Figures f = run(t, v, fit_radius, kind);
+      const Figures f = run(t, v, fit_radius, kind, stabilization);
       if (v == Variant::full) full_highest = f.highest_frequency;
       fmt::print(
           "{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:17.4f}  {:23.4f}  {:20.4f}  {:27.3f}  {:15.2f}  "

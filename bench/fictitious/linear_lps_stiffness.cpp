@@ -85,7 +85,8 @@ Eigen::MatrixXd row_hessian(const LinearLps& lps, const FictitiousParticles* ima
                              .deviatoric_modulus = lps.weighted_volume[i] > 0
                                                        ? 15 * lps.shear / lps.weighted_volume[i]
                                                        : 0,
-                             .cell_moment = (*lps.cell_moment)[i]};
+                             .cell_moment = (*lps.cell_moment)[i],
+                             .stabilization = lps.stabilization};
     Eigen::MatrixXd hessian;
     second_order_row_hessian(row, bond_xi.data(), hessian);
     return difference.transpose() * hessian * difference;

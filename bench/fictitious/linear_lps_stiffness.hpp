@@ -30,6 +30,7 @@ struct LinearLps {
   double bulk, shear;
   // M_i per real particle (xx, yy, zz, xy, xz, yz); null: first order (the model's energy)
   const std::vector<std::array<double, 6>>* cell_moment = nullptr;
+  double stabilization = 0;  // α of the second-order rows (model/second_order_row.hpp)
 };
 
 // The same energy Π at displacements u of every particle, real and fictitious (3 each): what a

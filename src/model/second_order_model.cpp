@@ -20,11 +20,16 @@ SecondOrderModel::SecondOrderModel(const Particles& particles, const Families& f
                                    MaterialPoints materials,
                                    const std::vector<double>& horizon_of_body,
                                    FictitiousParticles images,
-                                   std::vector<std::array<double, 6>> cell_moment)
+                                   std::vector<std::array<double, 6>> cell_moment,
+                                   double stabilization)
     : Model(particles, families, std::move(materials)),
       images_(std::move(images)),
-      cell_moment_(std::move(cell_moment)) {
+      cell_moment_(std::move(cell_moment)),
+      stabilization_(stabilization) {
   const int n = particles.count(), count = images_.count();
+  if (!(stabilization_ >= 0))
+    throw std::invalid_argument(
+        fmt::format("the second-order stabilisation must be ≥ 0, not {}", stabilization_));
   if (!materials_.anisotropy.empty())
     throw std::invalid_argument(
         "the second-order model is isotropic only (no material.anisotropy)");
@@ -136,7 +141,8 @@ SecondOrderRow SecondOrderModel::row(int i) const {
           .bulk = materials_.bulk_modulus[i],
           .shear = materials_.shear_modulus[i],
           .deviatoric_modulus = deviatoric_modulus_[i],
-          .cell_moment = cell_moment_[i]};
+          .cell_moment = cell_moment_[i],
+          .stabilization = stabilization_};
 }
 
 double SecondOrderModel::row_energy(int i, const double* y, double* d, double* gradient,
@@ -282,7 +288,7 @@ void SecondOrderModel::distribute(const Halo&) {
 }
 
 std::unique_ptr<SecondOrderModel> make_second_order_model(const Scene& scene, MaterialPoints m,
-                                                          double fit_radius) {
+                                                          double fit_radius, double stabilization) {
   const Particles& particles = scene.particles;
   std::vector<std::array<double, 6>> moments(particles.count());
   std::vector<char> has_cell(particles.count(), 0);
@@ -301,7 +307,7 @@ std::unique_ptr<SecondOrderModel> make_second_order_model(const Scene& scene, Ma
   fit_stencils(particles, scene.horizon_of_body, fit_radius, images);
   return std::make_unique<SecondOrderModel>(particles, scene.families, std::move(m),
                                             scene.horizon_of_body, std::move(images),
-                                            std::move(moments));
+                                            std::move(moments), stabilization);
 }
 
 }  // namespace fissure

@@ -3,14 +3,16 @@
 // every family near a surface completed by mirror images of the particles across it
 // (fictitious_particles.hpp), both calibrations run over the completed families, and each row's
 // energy that of second_order_row.hpp: the LPS energy of its bonds less their fitted curvature,
-// plus its cell's share of the strain gradient. Every displacement quadratic in x then stores the
-// continuum's energy of the cells, so that a beam's bending stiffness is exact at any resolution
-// (bench_fictitious_particles: 1.0000 in pure bending at 2, 3 and 4 tets through the thickness).
+// plus its cell's share of the strain gradient, plus a stabilisation of what the row's fit
+// leaves of each bond. Every displacement quadratic in x then stores the continuum's energy of
+// the cells, so that a beam's bending stiffness is exact at any resolution
+// (bench_fictitious_particles: 1.0000 in pure bending at 2, 3 and 4 tets through the
+// thickness), and the stabilisation keeps the particles from relaxing away from such fields
+// under load (`equilibrium` in the same bench).
 //
 // Not yet a config option: a clamp needs images of its own (a held block behind the clamp face
 // makes the clamp soft, +9% tip deflection at 2 tets; docs/model.md), which the constraints do
-// not describe yet, and a cantilever beyond its clamp stays 1.0% soft at every resolution, not
-// explained yet. Elastic and isotropic, on one rank, explicit only: no stiffness for implicit
+// not describe yet. Elastic and isotropic, on one rank, explicit only: no stiffness for implicit
 // integrators, no fracture, no plasticity.
 #include <array>
 #include <memory>
@@ -26,11 +28,12 @@ namespace fissure {
 class SecondOrderModel final : public Model {
  public:
   // `images` with their stencils (fit_stencils), cell_moment M_i per particle (xx, yy, zz, xy,
-  // xz, yz; tet_geometry.hpp). Throws std::invalid_argument naming the particle whose family
-  // does not determine a quadratic.
+  // xz, yz; tet_geometry.hpp), the rows' stabilisation α (second_order_row.hpp). Throws
+  // std::invalid_argument naming the particle whose family does not determine a quadratic.
   SecondOrderModel(const Particles& particles, const Families& families, MaterialPoints materials,
                    const std::vector<double>& horizon_of_body, FictitiousParticles images,
-                   std::vector<std::array<double, 6>> cell_moment);
+                   std::vector<std::array<double, 6>> cell_moment,
+                   double stabilization = kSecondOrderStabilization);
   std::string name() const override { return "lps"; }
   void forces(const double* y, double* f) override { forces_and_energy(y, f); }
   double forces_and_energy(const double* y, double* f) override;
@@ -71,6 +74,7 @@ class SecondOrderModel final : public Model {
   std::vector<QuadraticBasis> fit_;
   std::vector<double> scale_, deviatoric_modulus_;  // s = δ and B_i = 15μ_i/m_i per particle
   std::vector<std::array<double, 6>> cell_moment_;
+  double stabilization_;
   double stable_time_step_ = 0;
   std::vector<std::pair<std::string, double>> statistics_;
   // scratch: the extended positions, and per thread the forces on every extended particle
@@ -83,7 +87,8 @@ class SecondOrderModel final : public Model {
 // (Scene::tet_meshes): images of each body's particles across its boundary triangles, their
 // stencils fitted within fit_radius horizons, and each particle's tet as its cell. Throws
 // std::invalid_argument when a body has no tet mesh.
-std::unique_ptr<SecondOrderModel> make_second_order_model(const Scene& scene, MaterialPoints m,
-                                                          double fit_radius = 1.5);
+std::unique_ptr<SecondOrderModel> make_second_order_model(
+    const Scene& scene, MaterialPoints m, double fit_radius = 1.5,
+    double stabilization = kSecondOrderStabilization);
 
 }  // namespace fissure

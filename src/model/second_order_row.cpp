@@ -69,7 +69,24 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
       T[k] += M[k][l] * (lame * E[l].trace() * Mat3::Identity() + 2 * row.shear * E[l]);
     cell_energy += 0.5 * (T[k].array() * E[k].array()).sum();
   }
-  if (!gradient) return bond_energy + cell_energy;
+  // the stabilisation: ½ G Σ_b s_b |z_b|², s_b = ω_b V_b/|ξ_b|², G = αμ V_i / Σ_b ω_b V_b
+  thread_local std::vector<Vec3> pull;  // G s_b z_b
+  pull.assign(n, Vec3::Zero());
+  double stabilization_energy = 0;
+  if (row.stabilization > 0) {
+    double mass = 0;
+    for (int b = 0; b < n; ++b) mass += s / row.length[b] * row.member_volume[b];
+    const double modulus = row.stabilization * row.shear * row.volume / mass;
+    for (int b = 0; b < n; ++b) {
+      Vec3 z(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
+      for (int m = 0; m < 9; ++m) z -= bond[b].phi(m) * q[m];
+      const double weight = modulus * s * row.member_volume[b] / std::pow(row.length[b], 3);
+      stabilization_energy += 0.5 * weight * z.squaredNorm();
+      pull[b] = weight * z;
+    }
+  }
+  const double energy = bond_energy + cell_energy + stabilization_energy;
+  if (!gradient) return energy;
 
   // ∂/∂ẽ_b = V_i [c_b V_b (κθ − (B/3) Σ w ê |ξ| V) + B w_b ê_b V_b], along r̂_b; through q, the
   // curvature removed from every bond: P_m = −Σ_b φ_bm t_b r̂_b (m ≥ 3), plus the cell term's
@@ -82,8 +99,9 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
                      (row.dilatation_weight[b] * pressure +
                       row.deviatoric_modulus * row.deviatoric_weight[b] * hat(b));
     const Vec3 g = t * bond[b].unit;
-    for (int a = 0; a < 3; ++a) gradient[3 * b + a] = g[a];
+    for (int a = 0; a < 3; ++a) gradient[3 * b + a] = g[a] + pull[b][a];
     for (int m = 3; m < 9; ++m) P[m] -= bond[b].phi(m) * g;
+    for (int m = 0; m < 9; ++m) P[m] -= bond[b].phi(m) * pull[b];
   }
   Mat3 dF = Mat3::Zero();
   for (int k = 0; k < 3; ++k) dF += G[k] * T[k];
@@ -95,7 +113,7 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
   for (int b = 0; b < n; ++b)
     for (int m = 0; m < 9; ++m)
       for (int a = 0; a < 3; ++a) gradient[3 * b + a] += row.fit[b](m) * P[m][a];
-  return bond_energy + cell_energy;
+  return energy;
 }
 
 }  // namespace fissure

@@ -64,23 +64,32 @@ RowData interior_row() {
   }
   EXPECT_TRUE(quadratic_fit(members, fit_weight, delta, data.fit));
   const double h2 = std::pow(p.volume[i], 2.0 / 3);
-  data.row = {.bonds = static_cast<int>(members.size()),
-              .xi = data.xi.data(),
-              .length = data.length.data(),
-              .dilatation_weight = data.c.data(),
-              .deviatoric_weight = data.w.data(),
-              .member_volume = data.volume.data(),
-              .fit = data.fit.data(),
-              .scale = delta,
-              .volume = p.volume[i],
-              .bulk = kBulk,
-              .shear = kShear,
-              .deviatoric_modulus = 15 * kShear / m[i],
-              // a cell's second moment, anisotropic so that its off-diagonal terms count
-              .cell_moment = {0.06 * p.volume[i] * h2, 0.05 * p.volume[i] * h2,
-                              0.04 * p.volume[i] * h2, 0.01 * p.volume[i] * h2,
-                              -0.005 * p.volume[i] * h2, 0.008 * p.volume[i] * h2}};
+  data.row = {
+      .bonds = static_cast<int>(members.size()),
+      .xi = data.xi.data(),
+      .length = data.length.data(),
+      .dilatation_weight = data.c.data(),
+      .deviatoric_weight = data.w.data(),
+      .member_volume = data.volume.data(),
+      .fit = data.fit.data(),
+      .scale = delta,
+      .volume = p.volume[i],
+      .bulk = kBulk,
+      .shear = kShear,
+      .deviatoric_modulus = 15 * kShear / m[i],
+      // a cell's second moment, anisotropic so that its off-diagonal terms count
+      .cell_moment = {0.06 * p.volume[i] * h2, 0.05 * p.volume[i] * h2, 0.04 * p.volume[i] * h2,
+                      0.01 * p.volume[i] * h2, -0.005 * p.volume[i] * h2, 0.008 * p.volume[i] * h2},
+      // on, so that every test below covers the stabilisation too
+      .stabilization = 10};
   return data;
+}
+
+// d with each bond moved by up to `size` × s at random: a field the fit cannot follow, which
+// the stabilisation prices.
+void perturb(const RowData& data, std::mt19937& rng, double size, std::vector<double>& d) {
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (double& v : d) v += size * data.row.scale * uniform(rng);
 }
 
 // Bond vectors d_b = y(x_i + ξ_b) − y(x_i) of y(x) = x + Hξ + ½ Γ(ξ, ξ), Γ_a = ∂²u_a (symmetric).
@@ -162,6 +171,7 @@ TEST(SecondOrderRow, GradientMatchesFiniteDifferences) {
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.3);
   std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
+  perturb(data, rng, 1e-3, d);
   for (int b = 0; b < data.row.bonds; ++b) {
     const Eigen::Vector3d v = R * Eigen::Vector3d(&d[3 * b]);
     for (int a = 0; a < 3; ++a) d[3 * b + a] = v[a];
@@ -193,6 +203,7 @@ TEST(SecondOrderRow, HessianMatchesFiniteDifferencesOfTheGradient) {
   std::mt19937 rng(9);
   const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.3);
   std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
+  perturb(data, rng, 1e-3, d);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   for (int b = 0; b < data.row.bonds; ++b) {
@@ -228,7 +239,8 @@ TEST(SecondOrderRow, EnergyIsObjective) {
   const RowData data = interior_row();
   std::mt19937 rng(13);
   const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.3);
-  const std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
+  std::vector<double> d = deformed(data, 0.01 * test::random_matrix(rng), Gamma);
+  perturb(data, rng, 1e-3, d);
   std::vector<double> gradient(d.size()), turned_gradient(d.size()), turned(d.size());
   const double energy = second_order_row_energy(data.row, d.data(), gradient.data());
   const Eigen::Matrix3d R =
@@ -249,6 +261,53 @@ TEST(SecondOrderRow, EnergyIsObjective) {
     }
   }
   EXPECT_LT(error, 1e-10 * largest);
+}
+
+// The stabilisation is ½ αμ V_i Σ_b ω_b V_b |z_b|²/|ξ_b|² / Σ_b ω_b V_b over the residuals z_b
+// of the weighted least-squares quadratic through the bonds, here solved anew by QR: the row's
+// energy with α = 10 less its energy with α = 0, at a quadratic field perturbed bond by bond.
+// Within 1e-9: both are sums of the same squares (measured 2e-14). A residual that kept the
+// fit's linear part, a wrong weight or a constant off would fail, and so would the homogeneous
+// and quadratic tests above (which run with α = 10) with a residual that left out the linear
+// terms of the fit.
+TEST(SecondOrderRow, StabilisationPricesWhatTheFitLeaves) {
+  RowData data = interior_row();
+  std::mt19937 rng(17);
+  std::vector<double> d =
+      deformed(data, 1e-3 * test::random_matrix(rng), test::random_curvature(rng, 0.1));
+  perturb(data, rng, 1e-4, d);
+  const int n = data.row.bonds;
+  const double s = data.row.scale;
+  Eigen::MatrixXd basis(n, 9);
+  Eigen::VectorXd root_weight(n);
+  double mass = 0;
+  for (int b = 0; b < n; ++b) {
+    const Eigen::Vector3d xi(&data.xi[3 * b]);
+    basis.row(b) << xi.x() / s, xi.y() / s, xi.z() / s, 0.5 * xi.x() * xi.x() / (s * s),
+        0.5 * xi.y() * xi.y() / (s * s), 0.5 * xi.z() * xi.z() / (s * s), xi.x() * xi.y() / (s * s),
+        xi.x() * xi.z() / (s * s), xi.y() * xi.z() / (s * s);
+    root_weight(b) = std::sqrt(s / xi.norm() * data.volume[b]);  // √(ω_b V_b), the fit's weight
+    mass += s / xi.norm() * data.volume[b];
+  }
+  const Eigen::MatrixXd weighted = root_weight.asDiagonal() * basis;
+  double expected = 0;
+  for (int a = 0; a < 3; ++a) {
+    Eigen::VectorXd component(n);
+    for (int b = 0; b < n; ++b) component(b) = d[3 * b + a];
+    const Eigen::VectorXd q =
+        weighted.colPivHouseholderQr().solve(root_weight.asDiagonal() * component);
+    const Eigen::VectorXd z = component - basis * q;
+    for (int b = 0; b < n; ++b)
+      expected += s / data.length[b] * data.volume[b] * z(b) * z(b) / std::pow(data.length[b], 2);
+  }
+  expected *= 0.5 * 10 * kShear * data.row.volume / mass;
+  const double with = second_order_row_energy(data.row, d.data(), nullptr);
+  data.row.stabilization = 0;
+  const double without = second_order_row_energy(data.row, d.data(), nullptr);
+  std::printf("stabilisation energy %.6e, expected %.6e (row energy without it %.6e)\n",
+              with - without, expected, without);
+  EXPECT_GT(expected, 1e-3 * without);
+  EXPECT_NEAR((with - without) / expected, 1.0, 1e-9);
 }
 
 }  // namespace
