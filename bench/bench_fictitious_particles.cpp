@@ -117,6 +117,24 @@ Discretisation discretise(const Scene& scene, Variant variant, const bench::BoxF
   return d;
 }
 
+// The linearised energy of a discretisation over its first `real` particles, with the
+// second-order rows (their cells' moments and stabilisation α) for `second` only.
+bench::LinearLps linear_lps(const Discretisation& d, int real, Variant v,
+                            const std::vector<std::array<double, 6>>& moments,
+                            double stabilization) {
+  const bool second = v == Variant::second;
+  return {d.particles,
+          d.families,
+          real,
+          d.c,
+          d.w,
+          d.m,
+          Cantilever::bulk,
+          Cantilever::shear,
+          second ? &moments : nullptr,
+          second ? stabilization : 0.0};
+}
+
 Figures run(int tets, Variant variant, double fit_radius, Images kind, double stabilization) {
   const double resolution = Cantilever::side / tets, gravity = 9.81;
   // clamped: the beam alone, x ≥ 0, its clamp face x = 0 a face with images behind it
@@ -143,27 +161,13 @@ Figures run(int tets, Variant variant, double fit_radius, Images kind, double st
     const auto [largest, mean] = stencil_amplification(images);
     f.images = images.count(), f.largest_l1 = largest, f.mean_l1 = mean;
   }
-  const Particles& particles = d.particles;
-  const Families& families = d.families;
-  const std::vector<float>&c = d.c, &w = d.w;
-  const std::vector<double>& m = d.m;
-
   std::vector<int> dof(n, -1);
   int free = 0;
   for (int i = 0; i < n; ++i)
     if (real.reference[3 * i] >= 0) dof[i] = free++;
   const auto moments =
       variant == Variant::second ? cell_moments(scene) : std::vector<std::array<double, 6>>{};
-  const bench::LinearLps lps{particles,
-                             families,
-                             n,
-                             c,
-                             w,
-                             m,
-                             Cantilever::bulk,
-                             Cantilever::shear,
-                             moments.empty() ? nullptr : &moments,
-                             variant == Variant::second ? stabilization : 0.0};
+  const bench::LinearLps lps = linear_lps(d, n, variant, moments, stabilization);
   Eigen::MatrixXd K =
       bench::linear_lps_stiffness(lps, images.count() ? &images : nullptr, dof, 3 * free);
   Eigen::VectorXd mass(3 * free), load = Eigen::VectorXd::Zero(3 * free);
@@ -215,6 +219,26 @@ Figures run(int tets, Variant variant, double fit_radius, Images kind, double st
   return f;
 }
 
+// A free bar `length` × 0.1 × 0.1 m sampled with `tets` tets through its thickness, every
+// face free, with its cells' moments.
+struct FreeBar {
+  Scene scene;
+  std::vector<std::array<double, 6>> moments;
+  bench::BoxFaces box;
+};
+FreeBar free_bar(double length, int tets) {
+  const double side = Cantilever::side;
+  FreeBar bar{test::block_scene({.size = {length, side, side},
+                                 .resolution = side / tets,
+                                 .bulk = Cantilever::bulk,
+                                 .shear = Cantilever::shear,
+                                 .scene = "output: {surface: true}\n"}),
+              {},
+              {{0, 0, 0}, {length, side, side}, {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}}}};
+  bar.moments = cell_moments(bar.scene);
+  return bar;
+}
+
 // Pure bending of a free 0.4 × 0.1 × 0.1 m bar (every face free), by Saint-Venant's solution
 // u_x = κxz, u_y = −νκyz, u_z = −κ(x² + ν(z² − y²))/2 about its centre: the energy the model
 // stores over ½EIκ² per length, the bending stiffness without clamp, load or tip, and the
@@ -227,14 +251,10 @@ void bending(const std::vector<int>& tets, double fit_radius, double stabilizati
   fmt::print(
       "tets  lambda_m  variant     particles  images  energy/continuum  quadrature/continuum\n");
   for (int t : tets) {
-    const Scene scene = test::block_scene({.size = {length, side, side},
-                                           .resolution = side / t,
-                                           .bulk = Cantilever::bulk,
-                                           .shear = Cantilever::shear,
-                                           .scene = "output: {surface: true}\n"});
-    const auto moments = cell_moments(scene);
-    const bench::BoxFaces box{
-        {0, 0, 0}, {length, side, side}, {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}}};
+    const FreeBar bar = free_bar(length, t);
+    const Scene& scene = bar.scene;
+    const auto& moments = bar.moments;
+    const bench::BoxFaces& box = bar.box;
     double quadrature = 0;
     for (int i = 0; i < scene.particles.count(); ++i)
       quadrature += scene.particles.volume[i] * 0.5 * E * curvature * curvature *
@@ -250,16 +270,8 @@ void bending(const std::vector<int>& tets, double fit_radius, double stabilizati
         u[3 * i + 1] = -nu * curvature * y * z;
         u[3 * i + 2] = -0.5 * curvature * (x * x + nu * (z * z - y * y));
       }
-      const bench::LinearLps lps{d.particles,
-                                 d.families,
-                                 scene.particles.count(),
-                                 d.c,
-                                 d.w,
-                                 d.m,
-                                 Cantilever::bulk,
-                                 Cantilever::shear,
-                                 v == Variant::second ? &moments : nullptr,
-                                 v == Variant::second ? stabilization : 0.0};
+      const bench::LinearLps lps =
+          linear_lps(d, scene.particles.count(), v, moments, stabilization);
       fmt::print("{:4d}  {:8.5f}  {:10s}  {:9d}  {:6d}  {:16.4f}  {:20.4f}\n", t, side / t, name(v),
                  scene.particles.count(), d.images.count(),
                  bench::linear_lps_energy(lps, u) / continuum, quadrature / continuum);
@@ -283,14 +295,10 @@ void equilibrium(const std::vector<int>& tets, double fit_radius, double stabili
       "tets  lambda_m  variant     particles  images  bending_compliance/continuum  "
       "stretch_compliance/continuum\n");
   for (int t : tets) {
-    const Scene scene = test::block_scene({.size = {length, side, side},
-                                           .resolution = side / t,
-                                           .bulk = Cantilever::bulk,
-                                           .shear = Cantilever::shear,
-                                           .scene = "output: {surface: true}\n"});
-    const auto moments = cell_moments(scene);
-    const bench::BoxFaces box{
-        {0, 0, 0}, {length, side, side}, {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}}};
+    const FreeBar bar = free_bar(length, t);
+    const Scene& scene = bar.scene;
+    const auto& moments = bar.moments;
+    const bench::BoxFaces& box = bar.box;
     const int n = scene.particles.count();
     const auto& x = scene.particles.reference;
     std::vector<int> dof(n);
@@ -307,16 +315,7 @@ void equilibrium(const std::vector<int>& tets, double fit_radius, double stabili
     }
     for (Variant v : {Variant::dilatation, Variant::full, Variant::fictitious, Variant::second}) {
       const Discretisation d = discretise(scene, v, box, fit_radius, Images::mirror);
-      const bench::LinearLps lps{d.particles,
-                                 d.families,
-                                 n,
-                                 d.c,
-                                 d.w,
-                                 d.m,
-                                 Cantilever::bulk,
-                                 Cantilever::shear,
-                                 v == Variant::second ? &moments : nullptr,
-                                 v == Variant::second ? stabilization : 0.0};
+      const bench::LinearLps lps = linear_lps(d, n, v, moments, stabilization);
       Eigen::MatrixXd K =
           bench::linear_lps_stiffness(lps, d.images.count() ? &d.images : nullptr, dof, 3 * n);
       // the loads below do no work on a rigid motion, so penalising those changes nothing else
