@@ -251,10 +251,7 @@ void bending(const std::vector<int>& tets, double fit_radius, double stabilizati
   fmt::print(
       "tets  lambda_m  variant     particles  images  energy/continuum  quadrature/continuum\n");
   for (int t : tets) {
-    const FreeBar bar = free_bar(length, t);
-    const Scene& scene = bar.scene;
-    const auto& moments = bar.moments;
-    const bench::BoxFaces& box = bar.box;
+    const auto [scene, moments, box] = free_bar(length, t);
     double quadrature = 0;
     for (int i = 0; i < scene.particles.count(); ++i)
       quadrature += scene.particles.volume[i] * 0.5 * E * curvature * curvature *
@@ -295,10 +292,7 @@ void equilibrium(const std::vector<int>& tets, double fit_radius, double stabili
       "tets  lambda_m  variant     particles  images  bending_compliance/continuum  "
       "stretch_compliance/continuum\n");
   for (int t : tets) {
-    const FreeBar bar = free_bar(length, t);
-    const Scene& scene = bar.scene;
-    const auto& moments = bar.moments;
-    const bench::BoxFaces& box = bar.box;
+    const auto [scene, moments, box] = free_bar(length, t);
     const int n = scene.particles.count();
     const auto& x = scene.particles.reference;
     std::vector<int> dof(n);

@@ -69,20 +69,20 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
       T[k] += M[k][l] * (lame * E[l].trace() * Mat3::Identity() + 2 * row.shear * E[l]);
     cell_energy += 0.5 * (T[k].array() * E[k].array()).sum();
   }
-  // the stabilisation: ½ G Σ_b s_b |z_b|², s_b = ω_b V_b/|ξ_b|², G = αμ V_i / Σ_b ω_b V_b
-  thread_local std::vector<Vec3> pull;  // G s_b z_b
+  // the stabilisation ½ Σ_b G s_b |z_b|², z_b = r_b − Σ_{m<3} φ_m q_m (the bond less the whole
+  // fitted quadratic), and its pull G s_b z_b on each bond
+  thread_local std::vector<double> weight;
+  thread_local std::vector<Vec3> pull;
+  weight.resize(n);
   pull.assign(n, Vec3::Zero());
   double stabilization_energy = 0;
   if (row.stabilization > 0) {
-    double mass = 0;
-    for (int b = 0; b < n; ++b) mass += s / row.length[b] * row.member_volume[b];
-    const double modulus = row.stabilization * row.shear * row.volume / mass;
+    stabilization_weights(row, weight.data());
     for (int b = 0; b < n; ++b) {
-      Vec3 z(d[3 * b], d[3 * b + 1], d[3 * b + 2]);
-      for (int m = 0; m < 9; ++m) z -= bond[b].phi(m) * q[m];
-      const double weight = modulus * s * row.member_volume[b] / std::pow(row.length[b], 3);
-      stabilization_energy += 0.5 * weight * z.squaredNorm();
-      pull[b] = weight * z;
+      Vec3 z = bond[b].length * bond[b].unit;
+      for (int m = 0; m < 3; ++m) z -= bond[b].phi(m) * q[m];
+      stabilization_energy += 0.5 * weight[b] * z.squaredNorm();
+      pull[b] = weight[b] * z;
     }
   }
   const double energy = bond_energy + cell_energy + stabilization_energy;
@@ -114,6 +114,17 @@ double second_order_row_energy(const SecondOrderRow& row, const double* d, doubl
     for (int m = 0; m < 9; ++m)
       for (int a = 0; a < 3; ++a) gradient[3 * b + a] += row.fit[b](m) * P[m][a];
   return energy;
+}
+
+void stabilization_weights(const SecondOrderRow& row, double* weight) {
+  const double s = row.scale;
+  double mass = 0;  // Σ_b ω_b V_b
+  for (int b = 0; b < row.bonds; ++b) mass += s / row.length[b] * row.member_volume[b];
+  const double modulus = row.stabilization * row.shear * row.volume / mass;
+  for (int b = 0; b < row.bonds; ++b) {
+    const double l = row.length[b];
+    weight[b] = modulus * s * row.member_volume[b] / (l * l * l);  // G ω_b V_b / |ξ_b|²
+  }
 }
 
 }  // namespace fissure

@@ -52,6 +52,10 @@ struct SecondOrderRow {
 double second_order_row_energy(const SecondOrderRow& row, const double* d, double* gradient,
                                double* dilatation = nullptr);
 
+// G s_b per bond into weight (bonds entries), the stabilisation's W_stab = ½ Σ_b G s_b |z_b|²
+// with s_b = ω_b V_b/|ξ_b|² and G = αμ V_i / Σ_b ω_b V_b; zeros when α = 0.
+void stabilization_weights(const SecondOrderRow& row, double* weight);
+
 // ∂²/∂d² of the same at d, 3·bonds square, into hessian (resized): the material part (the
 // squared derivatives of θ and ê), the bonds' geometric part (each stretch's curvature times its
 // force), the cell term's and the stabilisation's (second_order_row_hessian.cpp).

@@ -154,16 +154,12 @@ void second_order_row_hessian(const SecondOrderRow& row, const double* d,
   // the stabilisation, ½ G Σ_b s_b |z_b|² with z = (I − Φ_all Aᵀ) d per component: a constant
   // Zᵀ diag(G s) Z on each component, Z = I − Φ_all A_allᵀ
   if (row.stabilization > 0) {
-    double mass = 0;
-    for (int b = 0; b < n; ++b) mass += s / row.length[b] * row.member_volume[b];
-    const double modulus = row.stabilization * row.shear * row.volume / mass;
     Eigen::MatrixXd all(9, n);
     for (int c = 0; c < n; ++c) all.col(c) = row.fit[c];
     Eigen::MatrixXd Z = -phi * all;
     Z.diagonal().array() += 1;
     Eigen::VectorXd weight(n);
-    for (int b = 0; b < n; ++b)
-      weight(b) = modulus * s * row.member_volume[b] / std::pow(row.length[b], 3);
+    stabilization_weights(row, weight.data());
     const Eigen::MatrixXd scalar = Z.transpose() * weight.asDiagonal() * Z;
     for (int c = 0; c < n; ++c)
       for (int k = 0; k < n; ++k)
