@@ -101,6 +101,12 @@ void Arkode::check(const Dynamics& dynamics) const {
                      fmt::format("'{}' is implicit, and material.model '{}' provides no "
                                  "stiffness; use material.model: lps or an explicit method",
                                  method_.name, dynamics.model().name()));
+  if (method_.kind != ArkodeMethod::Kind::explicit_rk &&
+      settings_.preconditioner == ArkodeSettings::Preconditioner::nearest &&
+      !dynamics.model().stiffness()->one_hop_matrices())
+    throw InputError(file_, "integrator.preconditioner",
+                     "this model factors its tangent only (surface_correction: fictitious): use "
+                     "auto or tangent");
 }
 
 double Arkode::step(Dynamics& dynamics, State& state, double dt) {
@@ -158,7 +164,9 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         using P = ArkodeSettings::Preconditioner;
         P kind = settings_.preconditioner;
         if (kind == P::automatic)
-          kind = choose_arkode_preconditioner(s.origin.size() / 3, s.distributed);
+          kind = dynamics.model().stiffness()->one_hop_matrices()
+                     ? choose_arkode_preconditioner(s.origin.size() / 3, s.distributed)
+                     : P::tangent;
         s.reduced = std::make_unique<ReducedNewtonSystem>(
             dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov,
             settings_.factor_precision, kind == P::nearest);

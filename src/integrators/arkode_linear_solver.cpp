@@ -32,13 +32,18 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
   const Families& families = dynamics.model().families();
   if (distributed() && !distributable(nearest))
     throw RunError("arkode: only the nearest preconditioner runs over several ranks");
+  const Stiffness& stiffness = *dynamics.model().stiffness();
+  if (nearest && !stiffness.one_hop_matrices())
+    throw RunError(
+        "arkode: this model has no nearest members' stiffness (surface_correction: fictitious); "
+        "use integrator.preconditioner: tangent");
   if (nearest) {
     nearest_ = nearest_bonds(families, kNearestMembers,
                              [&dynamics](double* reach) { dynamics.share(reach, 1); });
     // over several ranks the rank's rows only, the others empty
     stiffness_ = nearest_bond_pattern(families, nearest_, dynamics.first_row(), dynamics.end_row());
   } else {
-    stiffness_ = two_hop_pattern(families);
+    stiffness_ = stiffness.tangent_pattern(families);
   }
   system_ = stiffness_;
   diagonal_ = diagonal_positions(stiffness_);

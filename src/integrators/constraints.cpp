@@ -11,8 +11,8 @@ Constraints::Constraints(const Scene& scene)
   held_offsets_.push_back(0);
   for (int i = 0; i < p.count(); ++i) {
     const std::size_t before = held_by_.size();
-    for (std::size_t c = 0; c < constraints_.size(); ++c)
-      if (constraints_[c].region.contains(&p.reference[3 * i]))
+    for (std::size_t c = 0; c < constraints_.size(); ++c)  // a clamped face holds no particle
+      if (!constraints_[c].clamp && constraints_[c].region.contains(&p.reference[3 * i]))
         held_by_.push_back(static_cast<int>(c));
     if (held_by_.size() == before) continue;
     held_particles_.push_back(i);

@@ -132,7 +132,7 @@ NewtonPreconditioner::NewtonPreconditioner(NewtonSystem& system, Kind kind, Pets
     case Kind::tangent:
       matrix_ = system.tangent() == NewtonSystem::Tangent::majoriser
                     ? bond_pattern(families, first, end)
-                    : two_hop_pattern(families);
+                    : system.dynamics().model().stiffness()->tangent_pattern(families);
       break;
     case Kind::majoriser:
       matrix_ = bond_pattern(families, first, end);

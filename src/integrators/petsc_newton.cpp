@@ -409,7 +409,10 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   using K = PetscNewtonSettings::Krylov;
   const Families& families = s.system.dynamics().model().families();
   P kind = settings.preconditioner;
-  if (kind == P::automatic) kind = choose_preconditioner(families, s.system.distributed());
+  if (kind == P::automatic)
+    kind = s.system.dynamics().model().stiffness()->one_hop_matrices()
+               ? choose_preconditioner(families, s.system.distributed())
+               : P::tangent;
   if (kind == P::tangent && s.system.tangent() == NewtonSystem::Tangent::majoriser)
     kind = P::majoriser;
   s.preconditioner =
@@ -567,6 +570,17 @@ void PetscNewton::check(const Dynamics& dynamics) const {
                      fmt::format("material.model '{}' provides no stiffness for petsc_newton; "
                                  "use material.model: lps",
                                  dynamics.model().name()));
+  using P = PetscNewtonSettings::Preconditioner;
+  if (!dynamics.model().stiffness()->one_hop_matrices()) {
+    if (settings_.preconditioner != P::automatic && settings_.preconditioner != P::tangent)
+      throw InputError(file_, "integrator.preconditioner",
+                       "this model factors its tangent only (surface_correction: fictitious): "
+                       "use auto or tangent");
+    if (settings_.tangent == PetscNewtonSettings::Tangent::majoriser)
+      throw InputError(file_, "integrator.tangent",
+                       "this model has no bond-wise majoriser (surface_correction: fictitious): "
+                       "use auto, exact or projected");
+  }
   ensure_petsc();
   PetscOptions options = read_petsc_options(settings_, file_);
   petsc_check(PetscOptionsDestroy(&options), "PetscOptionsDestroy");

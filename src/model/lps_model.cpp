@@ -1,5 +1,7 @@
 #include "model/lps_model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +11,7 @@
 #include "core/error.hpp"
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
+#include "model/second_order_model.hpp"
 #include "parallel/collective.hpp"
 #include "parallel/halo.hpp"
 #include "scene/scene.hpp"
@@ -508,8 +511,15 @@ std::size_t LpsModel::bytes_read_per_bond() const {
 }
 
 ModelKind lps_model_kind() {
-  return {"lps", {}, nullptr, [](const Scene& scene, MaterialPoints m) {
+  return {"lps", {}, nullptr, [](const Scene& scene, MaterialPoints m) -> std::unique_ptr<Model> {
             const Config& config = scene.config;
+            if (config.bodies.front().material.surface_correction == SurfaceCorrection::fictitious)
+              try {
+                return make_second_order_model(scene, std::move(m));
+              } catch (const std::invalid_argument& e) {
+                throw InputError(config.file, "bodies[0].material.surface_correction",
+                                 fmt::format("fictitious: {}", e.what()));
+              }
             const int n = scene.particles.count();
             PlasticPoints plasticity;
             if (config.plasticity_enabled()) {

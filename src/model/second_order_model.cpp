@@ -305,6 +305,10 @@ std::unique_ptr<SecondOrderModel> make_second_order_model(const Scene& scene, Ma
       throw std::invalid_argument(fmt::format(
           "the second-order model needs every body's tet mesh; particle {} has none", i));
   fit_stencils(particles, scene.horizon_of_body, fit_radius, images);
+  for (const Constraint& c : scene.config.constraints)
+    if (c.clamp)
+      clamp_stencils(particles, scene.horizon_of_body, fit_radius, {c.clamp_point, c.clamp_normal},
+                     images);
   return std::make_unique<SecondOrderModel>(particles, scene.families, std::move(m),
                                             scene.horizon_of_body, std::move(images),
                                             std::move(moments), stabilization);

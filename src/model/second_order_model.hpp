@@ -10,10 +10,10 @@
 // thickness), and the stabilisation keeps the particles from relaxing away from such fields
 // under load (`equilibrium` in the same bench).
 //
-// Not yet a config option: a clamp needs images of its own (a held block behind the clamp face
-// makes the clamp soft, +9% tip deflection at 2 tets; docs/model.md), which the constraints do
-// not describe yet. Elastic and isotropic, on one rank, explicit only: no stiffness for implicit
-// integrators, no fracture, no plasticity.
+// material.surface_correction: fictitious. A clamp is a clamped face (constraints: {clamp: ...}),
+// whose images continue the field through it: a held block behind the clamp face makes the
+// clamp soft (+9% tip deflection at 2 tets; docs/model.md). Elastic and isotropic, on one rank;
+// its stiffness is the tangent alone (second_order_stiffness.cpp), no fracture, no plasticity.
 #include <array>
 #include <memory>
 #include <vector>
@@ -22,10 +22,11 @@
 #include "model/model.hpp"
 #include "model/quadratic_fit.hpp"
 #include "model/second_order_row.hpp"
+#include "model/stiffness.hpp"
 
 namespace fissure {
 
-class SecondOrderModel final : public Model {
+class SecondOrderModel final : public Model, public Stiffness {
  public:
   // `images` with their stencils (fit_stencils), cell_moment M_i per particle (xx, yy, zz, xy,
   // xz, yz; tet_geometry.hpp), the rows' stabilisation α (second_order_row.hpp). Throws
@@ -48,6 +49,23 @@ class SecondOrderModel final : public Model {
   std::vector<std::pair<std::string, double>> statistics() const override { return statistics_; }
   void distribute(const Halo& halo) override;
 
+  // The stiffness (second_order_stiffness.cpp): the tangent folded onto the particles,
+  // K = Σ_i P_iᵀ H_i P_i over each row's Hessian H_i and the map P_i from the particles'
+  // displacements to its bonds (an image's bond through its stencil). The tangent is exact at y;
+  // clamp_compression changes nothing (its material and cell parts are PSD, its geometric part
+  // is left in). No one-hop matrices: their calls throw std::logic_error.
+  Stiffness* stiffness() override { return this; }
+  const Stiffness* stiffness() const override { return this; }
+  void assemble_tangent(const double* y, SparseSymmetric& K, bool clamp_compression) override;
+  void linearize(const double* y, bool clamp_compression) override;
+  void apply_tangent(const double* v, double* out) const override;
+  SparseSymmetric tangent_pattern(const Families& families) const override;
+  bool one_hop_matrices() const override { return false; }
+  void assemble_majoriser(const double* y, SparseSymmetric& K) override;
+  void assemble_nearest_stiffness(const double* y, const std::vector<char>& kept,
+                                  SparseSymmetric& K) override;
+  void assemble_scalar_stiffness(SparseSymmetric& L) const override;
+
   // The particles followed by the images, and the families over them (rows of the images last).
   const Particles& extended_particles() const { return extended_; }
   const Families& extended_families() const { return extended_families_; }
@@ -65,6 +83,14 @@ class SecondOrderModel final : public Model {
   // |Pᵀ H P| ≤ |P|ᵀ|H||P| over each row's Hessian H and its map P from the particles'
   // displacements to its bonds (stencils included), so that nothing is assembled.
   double reference_time_step() const;
+  // Row i's bonds as maps of the particles' displacements: bond b's d_b moves by
+  // Σ_k coefficient[k] u_{touched[local[k]]} over k in [bond_offsets[b], bond_offsets[b + 1]),
+  // `touched` sorted, i among them.
+  struct FoldedRow {
+    std::vector<int> touched, bond_offsets, local;
+    std::vector<double> coefficient;
+  };
+  void fold_row(int i, FoldedRow& row) const;
 
   FictitiousParticles images_;
   Particles extended_;
@@ -79,14 +105,16 @@ class SecondOrderModel final : public Model {
   std::vector<std::pair<std::string, double>> statistics_;
   // scratch: the extended positions, and per thread the forces on every extended particle
   mutable std::vector<double> positions_;
+  std::vector<double> linearized_at_;  // linearize()'s extended positions
   std::vector<std::vector<double>> thread_forces_;
   int largest_row_ = 0;
 };
 
 // The model for a scene whose bodies are all tet-sampled and keep their tet meshes
 // (Scene::tet_meshes): images of each body's particles across its boundary triangles, their
-// stencils fitted within fit_radius horizons, and each particle's tet as its cell. Throws
-// std::invalid_argument when a body has no tet mesh.
+// stencils fitted within fit_radius horizons (clamp_stencils behind each clamped face of the
+// scene's constraints), and each particle's tet as its cell. Throws std::invalid_argument when a
+// body has no tet mesh.
 std::unique_ptr<SecondOrderModel> make_second_order_model(
     const Scene& scene, MaterialPoints m, double fit_radius = 1.5,
     double stabilization = kSecondOrderStabilization);

@@ -5,6 +5,7 @@
 
 namespace fissure {
 
+struct Families;
 struct SparseSymmetric;  // linear/sparse_symmetric.hpp
 
 class Stiffness {
@@ -35,6 +36,13 @@ class Stiffness {
   // Laplacian whose bond weights are a third of the majoriser's bond stiffness (so that L ⊗ I₃
   // has the majoriser's trace at rest), for preconditioners that scale to large scenes.
   virtual void assemble_scalar_stiffness(SparseSymmetric& L) const = 0;
+  // The pattern assemble_tangent fills: two_hop_pattern(families) where each row's energy reads
+  // its family's members only, wider where it reads more (the second-order model's images move
+  // with their stencils' particles).
+  virtual SparseSymmetric tangent_pattern(const Families& families) const;
+  // Whether the one-hop matrices (assemble_majoriser, assemble_nearest_stiffness,
+  // assemble_scalar_stiffness) exist; without them implicit steps factor the tangent only.
+  virtual bool one_hop_matrices() const { return true; }
   // Over several ranks (Model::distribute) the majoriser, the nearest stiffness and the
   // matrix-free tangent are evaluated on this rank's rows only (the matrix's other rows zero,
   // out's left as they are), y's and v's ghosts must be current, and each call is

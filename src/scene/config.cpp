@@ -309,7 +309,8 @@ Material read_material(const YamlReader& r, const YAML::Node& node, const std::s
                                .choice("surface_correction", m.surface_correction,
                                        {{"none", SurfaceCorrection::none},
                                         {"dilatation", SurfaceCorrection::dilatation},
-                                        {"full", SurfaceCorrection::full}});
+                                        {"full", SurfaceCorrection::full},
+                                        {"fictitious", SurfaceCorrection::fictitious}});
   if (node["fracture"]) m.fracture = read_fracture(r, node["fracture"], join(path, "fracture"));
   if (node["anisotropy"])
     m.anisotropy = read_anisotropy(r, node["anisotropy"], join(path, "anisotropy"));
@@ -332,7 +333,26 @@ Body read_body(const YamlReader& r, const YAML::Node& node, const std::string& p
   return b;
 }
 
+// A clamped face: {clamp: {point: [x, y, z], normal: [nx, ny, nz]}}, the normal pointing out of
+// the body, made a unit vector.
+Constraint read_clamp(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  r.check_keys(node, path, {"clamp"});
+  const std::string p = join(path, "clamp");
+  r.check_keys(node["clamp"], p, {"point", "normal"});
+  Constraint c;
+  c.clamp = c.fix = true;
+  c.clamp_point = r.vec3(node["clamp"]["point"], join(p, "point"));
+  c.clamp_normal = r.vec3(node["clamp"]["normal"], join(p, "normal"));
+  const double length =
+      std::sqrt(c.clamp_normal[0] * c.clamp_normal[0] + c.clamp_normal[1] * c.clamp_normal[1] +
+                c.clamp_normal[2] * c.clamp_normal[2]);
+  if (!(length > 0)) r.fail(join(p, "normal"), "must not be zero");
+  for (double& n : c.clamp_normal) n /= length;
+  return c;
+}
+
 Constraint read_constraint(const YamlReader& r, const YAML::Node& node, const std::string& path) {
+  if (node.IsMap() && node["clamp"]) return read_clamp(r, node, path);
   r.check_keys(node, path,
                {"region", "fix", "velocity", "angular_velocity", "center", "release_at"});
   Constraint c;
@@ -405,6 +425,41 @@ void check_load_ramp(const YamlReader& r, const TimeSettings& t, const Integrato
                      "a time.dt of at most {:.6g} s, or integrator.steps: {}",
                      t.dt, t.end, increments, ramp, ramp, double(increments) / ramp, t.end / ramp,
                      increments));
+}
+
+// What surface_correction: fictitious (model/second_order_model.hpp) does not model yet, and the
+// clamped faces that only it models, refused with the key that asks for them.
+void check_fictitious_particles(const YamlReader& r, const Config& c) {
+  const Material& m = c.bodies.front().material;
+  const bool fictitious = m.surface_correction == SurfaceCorrection::fictitious;
+  for (std::size_t i = 0; i < c.constraints.size(); ++i)
+    if (c.constraints[i].clamp && !fictitious)
+      r.fail(indexed("constraints", i) + ".clamp",
+             "a clamped face needs bodies' material.surface_correction: fictitious (the other "
+             "corrections hold particles: use region with fix: true)");
+  if (!fictitious) return;
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+    const std::string path = indexed("bodies", i);
+    const Material& b = c.bodies[i].material;
+    if (b.model != "lps")
+      r.fail(path + ".material.surface_correction", "fictitious needs model: lps");
+    if (c.bodies[i].geometry.kind == Geometry::Kind::points)
+      r.fail(path + ".geometry",
+             "surface_correction: fictitious needs a tet-sampled body (its boundary and cells), "
+             "not points");
+    if (b.fracture.enabled)
+      r.fail(path + ".material.fracture",
+             "surface_correction: fictitious has no fracture yet (docs/model.md, deviation 8)");
+    if (b.plasticity.enabled)
+      r.fail(path + ".material.plasticity",
+             "surface_correction: fictitious has no plasticity yet (docs/model.md, deviation 8)");
+    if (b.anisotropy.enabled)
+      r.fail(path + ".material.anisotropy",
+             "surface_correction: fictitious is isotropic only (docs/model.md, deviation 8)");
+  }
+  if (!c.initial_cracks.empty())
+    r.fail("initial_cracks",
+           "surface_correction: fictitious has no fracture yet (docs/model.md, deviation 8)");
 }
 
 Config read_config(const YamlReader& r, const YAML::Node& root) {
@@ -499,6 +554,7 @@ Config read_config(const YamlReader& r, const YAML::Node& root) {
     if (parser.parse)
       c.output.options.emplace_back(parser.name, parser.parse(OptionReader(r, own, "output")));
   if (root["render"]) c.render = read_render_settings(r, root["render"]);
+  check_fictitious_particles(r, c);
   return c;
 }
 

@@ -57,8 +57,9 @@ struct AnisotropySettings {
 
 // lps only (docs/model.md, deviations 4 and 8): none, the dilatation weights calibrated so that
 // θ = tr ε near surfaces, or those and the deviatoric weights calibrated so that every small
-// homogeneous strain gives the continuum's energy on every particle.
-enum class SurfaceCorrection { none, dilatation, full };
+// homogeneous strain gives the continuum's energy on every particle, or the second-order model
+// with fictitious particles (model/second_order_model.hpp), exact for every quadratic field.
+enum class SurfaceCorrection { none, dilatation, full, fictitious };
 
 struct Material {
   std::string model = "lps";  // a registered model (model/model_registry.hpp)
@@ -82,6 +83,11 @@ struct Body {
 };
 
 struct Constraint {
+  // A clamped face instead of a region (surface_correction: fictitious only): the body's
+  // displacement held at zero on the plane through clamp_point, clamp_normal pointing out of the
+  // body; it holds no particle, the model continues the field through the plane.
+  bool clamp = false;
+  Vec3 clamp_point{}, clamp_normal{};
   Region region;
   bool fix = false;  // velocity zero
   Vec3 velocity{};   // prescribed velocity when not fixed

@@ -159,6 +159,9 @@ void build_scene_families(Scene& scene, const RowSplit& split) {
 Scene build_scene(const Config& config, const RowSplit& split) {
   Scene scene;
   scene.config = config;
+  // the second-order model's images and cells come from the bodies' tet meshes
+  const bool second_order =
+      config.bodies.front().material.surface_correction == SurfaceCorrection::fictitious;
   double smallest_horizon = 0;
   for (std::size_t b = 0; b < config.bodies.size(); ++b) {
     const Body& body = config.bodies[b];
@@ -169,7 +172,8 @@ Scene build_scene(const Config& config, const RowSplit& split) {
     } else {
       BodyTetMesh tets{static_cast<int>(b), tetrahedralize_body(body, config.file, b), {}};
       tets.particle = add_tet_particles(tets.mesh, tets.body, body, scene.particles);
-      if (config.output.embedded_mesh()) scene.tet_meshes.push_back(std::move(tets));
+      if (config.output.embedded_mesh() || second_order)
+        scene.tet_meshes.push_back(std::move(tets));
     }
     if (scene.particles.count() == before)
       throw InputError(config.file, key,
@@ -189,6 +193,9 @@ Scene build_scene(const Config& config, const RowSplit& split) {
         if (i >= 0) i = sorted_index[i];
   }
   // the tet meshes name particles of the whole scene, which a split drops (Families)
+  if (split.boundaries && second_order)
+    throw InputError(config.file, "bodies[0].material.surface_correction",
+                     "fictitious cannot run over several ranks yet (docs/mpi.md)");
   if (split.boundaries && !scene.tet_meshes.empty())
     throw InputError(config.file, "output",
                      "output.surface and output.tets cannot be written over several ranks yet "

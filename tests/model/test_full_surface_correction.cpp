@@ -886,9 +886,10 @@ TEST(FullSurfaceCorrection, ConfigReadsTheThreeChoicesAndBooleans) {
 
 // A misspelt choice names the file, the key path and the valid choices, and suggests the nearest.
 TEST(FullSurfaceCorrection, ConfigRejectsAMisspeltChoice) {
-  test::expect_input_error([] { parse_config(scene_with("fulll"), "scene.yaml"); }, "scene.yaml",
-                           "bodies[0].material.surface_correction: unknown surface_correction "
-                           "'fulll'; did you mean 'full'? (valid: none, dilatation, full)");
+  test::expect_input_error(
+      [] { parse_config(scene_with("fulll"), "scene.yaml"); }, "scene.yaml",
+      "bodies[0].material.surface_correction: unknown surface_correction "
+      "'fulll'; did you mean 'full'? (valid: none, dilatation, full, fictitious)");
   const auto e = test::input_error([] { parse_config(scene_with("dilation"), "scene.yaml"); });
   ASSERT_TRUE(e.has_value());
   EXPECT_EQ(e->key(), "bodies[0].material.surface_correction");

@@ -6,7 +6,11 @@
 #include <cmath>
 #include <random>
 
+#include "integrators/dynamics.hpp"
+#include "integrators/registry.hpp"
+#include "linear/sparse_symmetric.hpp"
 #include "model/second_order_model.hpp"
+#include "support/error_message.hpp"
 #include "support/random_fields.hpp"
 #include "support/scenes.hpp"
 
@@ -131,6 +135,51 @@ TEST(SecondOrderModel, ForcesAreMinusTheGradientOfTheEnergy) {
   }
 }
 
+// The stiffness (second_order_stiffness.cpp) is the derivative of the forces: at a finite
+// deformation, K v assembled on the model's own pattern against −(f(y + hv) − f(y − hv))/2h along
+// random directions (central differences: truncation O(h²), round-off about 1e-9 of K v here),
+// and the matrix-free product equal to the assembled one to round-off. A fold that dropped the
+// images' stencils, a pattern missing a coupling (assembly would not find its entry) or a
+// transposed block fails by O(1).
+TEST(SecondOrderModel, TangentIsTheDerivativeOfTheForces) {
+  const Scene scene = block();
+  const auto model = make_second_order_model(scene, material_points(scene));
+  std::mt19937 rng(6);
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.05);
+  const std::vector<double> y = deformed(scene.particles, 0.01 * test::random_matrix(rng), Gamma);
+  Stiffness& stiffness = *model->stiffness();
+  EXPECT_FALSE(stiffness.one_hop_matrices());
+  SparseSymmetric K = stiffness.tangent_pattern(scene.families);
+  K.values.assign(K.columns.size(), 0.0);
+  stiffness.assemble_tangent(y.data(), K, false);
+  stiffness.linearize(y.data(), false);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> v(y.size()), plus(y), minus(y), f_plus(y.size()), f_minus(y.size()),
+        assembled(y.size()), product(y.size());
+    for (double& c : v) c = normal(rng);
+    const double h = 1e-6 * kLambda;
+    for (std::size_t k = 0; k < v.size(); ++k) plus[k] += h * v[k], minus[k] -= h * v[k];
+    model->forces(plus.data(), f_plus.data());
+    model->forces(minus.data(), f_minus.data());
+    K.multiply(v.data(), assembled.data());
+    stiffness.apply_tangent(v.data(), product.data());
+    double norm = 0, difference_error = 0, product_error = 0;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const double difference = -(f_plus[k] - f_minus[k]) / (2 * h);
+      norm += assembled[k] * assembled[k];
+      difference_error += (difference - assembled[k]) * (difference - assembled[k]);
+      product_error += (product[k] - assembled[k]) * (product[k] - assembled[k]);
+    }
+    const double difference_ratio = std::sqrt(difference_error / norm),
+                 product_ratio = std::sqrt(product_error / norm);
+    std::printf("direction %d: |Kv - differences| / |Kv| %.2e, |matrix-free - Kv| / |Kv| %.2e\n",
+                trial, difference_ratio, product_ratio);
+    EXPECT_LT(difference_ratio, 1e-6);
+    EXPECT_LT(product_ratio, 1e-12);
+  }
+}
+
 // A rigid rotation of a deformed block leaves its energy unchanged and rotates its forces.
 TEST(SecondOrderModel, EnergyAndForcesAreObjective) {
   const Scene scene = block();
@@ -198,6 +247,117 @@ TEST(SecondOrderModel, StableTimeStepIsABound) {
       "model's step %.4e s\n",
       dt, limit, dt / limit, make_model(scene)->stable_time_step());
   EXPECT_LE(dt, limit);
+}
+
+// -------------------------------------------------------------------------------------------
+// The config: material.surface_correction: fictitious and a clamped face.
+
+std::string fictitious_scene(const std::string& material, const std::string& rest) {
+  return fmt::format(
+      "time: {{end: 1.0}}\nbodies:\n"
+      "  - geometry: {{box: {{min: [0, 0, 0], max: [{}, {}, {}]}}}}\n"
+      "    resolution: {}\n"
+      "    material: {{density: 1000, bulk_modulus: {}, shear_modulus: {}{}}}\n{}",
+      kSize[0], kSize[1], kSize[2], kLambda, kBulk, kShear, material, rest);
+}
+
+const std::string kClamp = "constraints:\n  - {clamp: {point: [0, 0, 0], normal: [-1, 0, 0]}}\n";
+
+// The key makes the second-order model (the same forces as make_second_order_model's, to the
+// threads' summation order), and a clamped face holds no particle but resists a translation:
+// under a uniform displacement the free block's forces vanish to round-off (its images'
+// stencils sum to 1), the clamped one's do not (the images behind x = 0 stay put) and pull
+// back, against the displacement, at least as a bar's axial stiffness would.
+TEST(SecondOrderModel, ConfigKeyMakesItAndAClampedFaceResistsATranslation) {
+  const Scene free_block =
+      build_scene(parse_config(fictitious_scene(", surface_correction: fictitious", ""), "a.yaml"));
+  const Scene clamped = build_scene(
+      parse_config(fictitious_scene(", surface_correction: fictitious", kClamp), "a.yaml"));
+  EXPECT_TRUE(clamped.config.constraints.at(0).clamp);
+  const auto clamped_model = make_model(clamped);
+  Dynamics dynamics(clamped, *clamped_model);
+  std::vector<int> held;
+  std::vector<Vec3> velocity;
+  dynamics.held(0, held, velocity);
+  EXPECT_TRUE(held.empty());
+  const auto direct = make_second_order_model(free_block, material_points(free_block));
+  const std::vector<double> y_curved =
+      deformed(free_block.particles, 0.001 * Eigen::Matrix3d::Identity(),
+               {Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()});
+  std::vector<double> f_direct(y_curved.size()), f_config(y_curved.size());
+  direct->forces(y_curved.data(), f_direct.data());
+  make_model(free_block)->forces(y_curved.data(), f_config.data());
+  double force_difference = 0, force_scale = 0;  // threads sum in any order: round-off apart
+  for (std::size_t k = 0; k < f_direct.size(); ++k) {
+    force_difference = std::max(force_difference, std::abs(f_config[k] - f_direct[k]));
+    force_scale = std::max(force_scale, std::abs(f_direct[k]));
+  }
+  EXPECT_LT(force_difference, 1e-12 * force_scale);
+
+  double largest_free = 0;
+  for (const Scene* scene : {&free_block, &clamped}) {
+    std::vector<double> y(scene->particles.reference), f(y.size());
+    for (std::size_t i = 0; i < y.size(); i += 3) y[i] += 1e-6;
+    make_model(*scene)->forces(y.data(), f.data());
+    double along = 0, largest = 0;
+    for (std::size_t i = 0; i < y.size(); i += 3) {
+      along += f[i];
+      for (int a = 0; a < 3; ++a) largest = std::max(largest, std::abs(f[i + a]));
+    }
+    std::printf("%s: largest force %.3e N, sum along the displacement %.3e N\n",
+                scene == &free_block ? "free" : "clamped", largest, along);
+    if (scene == &free_block) {
+      largest_free = largest;
+    } else {
+      EXPECT_LT(largest_free, 1e-8 * largest);
+      // at least a bar's axial resistance E A u / L, E > μ
+      EXPECT_LT(along, -kShear * kSize[1] * kSize[2] * 1e-6 / kSize[0]);
+    }
+  }
+}
+
+// What the model cannot do is refused at load, naming the key: a clamp without it, fracture,
+// plasticity, point bodies; and an implicit integrator asking for a one-hop matrix it lacks.
+TEST(SecondOrderModel, ConfigRefusesWhatItCannotModel) {
+  const std::string fictitious = ", surface_correction: fictitious";
+  test::expect_input_error([&] { parse_config(fictitious_scene("", kClamp), "a.yaml"); }, "a.yaml",
+                           "constraints[0].clamp: a clamped face needs bodies' "
+                           "material.surface_correction: fictitious");
+  test::expect_input_error(
+      [&] {
+        parse_config(fictitious_scene(fictitious + ", fracture: {critical_stretch: 0.01}", ""),
+                     "a.yaml");
+      },
+      "a.yaml", "bodies[0].material.fracture: surface_correction: fictitious has no fracture");
+  test::expect_input_error(
+      [&] {
+        parse_config(fictitious_scene(fictitious + ", plasticity: {yield: 1.0}", ""), "a.yaml");
+      },
+      "a.yaml", "bodies[0].material.plasticity: surface_correction: fictitious has no plasticity");
+  test::expect_input_error(
+      [&] {
+        parse_config(fictitious_scene(fictitious,
+                                      "initial_cracks:\n  - {plane: {point: [0.1, 0, "
+                                      "0], normal: [1, 0, 0]}}\n"),
+                     "a.yaml");
+      },
+      "a.yaml", "initial_cracks: surface_correction: fictitious has no fracture");
+  test::expect_input_error(
+      [&] {
+        parse_config(fictitious_scene(fictitious,
+                                      "constraints:\n  - {clamp: {point: [0, 0, 0], normal: "
+                                      "[0, 0, 0]}}\n"),
+                     "a.yaml");
+      },
+      "a.yaml", "constraints[0].clamp.normal: must not be zero");
+  const Scene scene = build_scene(parse_config(
+      fictitious_scene(fictitious, "integrator: {type: petsc_newton, preconditioner: gamg}\n"),
+      "a.yaml"));
+  auto model = make_model(scene);
+  Dynamics dynamics(scene, *model);
+  auto integrator = make_integrator(scene.config.integrator, "a.yaml");
+  test::expect_input_error([&] { integrator->check(dynamics); }, "a.yaml",
+                           "integrator.preconditioner: this model factors its tangent only");
 }
 
 }  // namespace

@@ -43,6 +43,22 @@ inline Scene cantilever_scene(double resolution, double gravity, const std::stri
   return build_scene(parse_config(yaml, "cantilever.yaml"));
 }
 
+// The same beam without the held block, x ≥ 0, with surface_correction: fictitious and its face
+// x = 0 clamped (constraints: {clamp: ...}): the second-order model's images continue the field
+// through the clamped face (docs/model.md, deviation 8).
+inline Scene clamped_face_cantilever_scene(double resolution, double gravity,
+                                           const std::string& extra = "") {
+  using C = Cantilever;
+  const std::string yaml = fmt::format(
+      "time: {{end: 1.0}}\ngravity: [0, 0, {}]\nbodies:\n"
+      "  - geometry: {{box: {{min: [0, 0, 0], max: [{}, {}, {}]}}}}\n"
+      "    resolution: {}\n    material: {{density: {}, bulk_modulus: {}, shear_modulus: {}, "
+      "surface_correction: fictitious}}\n"
+      "constraints:\n  - {{clamp: {{point: [0, 0, 0], normal: [-1, 0, 0]}}}}\n{}",
+      -gravity, C::length, C::side, C::side, resolution, C::density, C::bulk, C::shear, extra);
+  return build_scene(parse_config(yaml, "clamped_face_cantilever.yaml"));
+}
+
 // The particles within one resolution of the free end x = L.
 inline std::vector<int> tip_particles(const Particles& p, double resolution) {
   std::vector<int> tip;
