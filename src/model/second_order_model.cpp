@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "mesh/tet_geometry.hpp"
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
@@ -287,6 +288,35 @@ void SecondOrderModel::distribute(const Halo&) {
       "the second-order model (fictitious particles) cannot run over several ranks yet");
 }
 
+namespace {
+
+// A clamped face must be a face of the bodies: no particle behind its plane (beyond half a
+// horizon: a particle sits inside its tet, a fraction of λ from the face), and some within a
+// horizon of it, else its images would clamp the field of other faces' images or nothing.
+void check_clamp_face(const Scene& scene, std::size_t k) {
+  const Constraint& c = scene.config.constraints[k];
+  const Particles& p = scene.particles;
+  bool near = false;
+  for (int i = 0; i < p.count(); ++i) {
+    double distance = 0;  // along the normal, out of the body
+    for (int a = 0; a < 3; ++a)
+      distance += c.clamp_normal[a] * (p.reference[3 * i + a] - c.clamp_point[a]);
+    const double delta = scene.horizon_of_body[p.body[i]];
+    if (distance > 0.5 * delta)
+      throw InputError(scene.config.file, fmt::format("constraints[{}].clamp", k),
+                       fmt::format("particle {} lies {:.3g} m behind the clamped face: put the "
+                                   "plane on a face of the body, its normal pointing out of it",
+                                   i, distance));
+    near = near || distance > -delta;
+  }
+  if (!near)
+    throw InputError(scene.config.file, fmt::format("constraints[{}].clamp", k),
+                     "no particle lies within a horizon of the clamped face: put the plane on a "
+                     "face of the body");
+}
+
+}  // namespace
+
 std::unique_ptr<SecondOrderModel> make_second_order_model(const Scene& scene, MaterialPoints m,
                                                           double fit_radius, double stabilization) {
   const Particles& particles = scene.particles;
@@ -305,10 +335,13 @@ std::unique_ptr<SecondOrderModel> make_second_order_model(const Scene& scene, Ma
       throw std::invalid_argument(fmt::format(
           "the second-order model needs every body's tet mesh; particle {} has none", i));
   fit_stencils(particles, scene.horizon_of_body, fit_radius, images);
-  for (const Constraint& c : scene.config.constraints)
-    if (c.clamp)
-      clamp_stencils(particles, scene.horizon_of_body, fit_radius, {c.clamp_point, c.clamp_normal},
-                     images);
+  for (std::size_t k = 0; k < scene.config.constraints.size(); ++k) {
+    const Constraint& c = scene.config.constraints[k];
+    if (!c.clamp) continue;
+    check_clamp_face(scene, k);
+    clamp_stencils(particles, scene.horizon_of_body, fit_radius, {c.clamp_point, c.clamp_normal},
+                   images);
+  }
   return std::make_unique<SecondOrderModel>(particles, scene.families, std::move(m),
                                             scene.horizon_of_body, std::move(images),
                                             std::move(moments), stabilization);

@@ -316,8 +316,9 @@ TEST(SecondOrderModel, ConfigKeyMakesItAndAClampedFaceResistsATranslation) {
   }
 }
 
-// What the model cannot do is refused at load, naming the key: a clamp without it, fracture,
-// plasticity, point bodies; and an implicit integrator asking for a one-hop matrix it lacks.
+// What the model cannot do is refused at load, naming the key: a clamp without it or off the
+// body's faces, fracture, plasticity, initial cracks; and an implicit integrator asking for a
+// one-hop matrix it lacks.
 TEST(SecondOrderModel, ConfigRefusesWhatItCannotModel) {
   const std::string fictitious = ", surface_correction: fictitious";
   test::expect_input_error([&] { parse_config(fictitious_scene("", kClamp), "a.yaml"); }, "a.yaml",
@@ -350,6 +351,16 @@ TEST(SecondOrderModel, ConfigRefusesWhatItCannotModel) {
                      "a.yaml");
       },
       "a.yaml", "constraints[0].clamp.normal: must not be zero");
+  for (const char* clamp : {"{point: [0.12, 0, 0], normal: [-1, 0, 0]}",   // through the middle
+                            "{point: [0, 0, 0], normal: [1, 0, 0]}",       // pointing inward
+                            "{point: [-1, 0, 0], normal: [-1, 0, 0]}"}) {  // off the body
+    const Scene clamped = build_scene(parse_config(
+        fictitious_scene(fictitious, fmt::format("constraints:\n  - {{clamp: {}}}\n", clamp)),
+        "a.yaml"));
+    const auto e = test::input_error([&] { make_model(clamped); });
+    ASSERT_TRUE(e.has_value()) << clamp;
+    EXPECT_EQ(e->key(), "constraints[0].clamp") << e->what();
+  }
   const Scene scene = build_scene(parse_config(
       fictitious_scene(fictitious, "integrator: {type: petsc_newton, preconditioner: gamg}\n"),
       "a.yaml"));
