@@ -146,13 +146,17 @@ SecondOrderRow SecondOrderModel::row(int i) const {
           .stabilization = stabilization_};
 }
 
-double SecondOrderModel::row_energy(int i, const double* y, double* d, double* gradient,
-                                    double* theta) const {
+void SecondOrderModel::bond_vectors(int i, const double* y, double* d) const {
   const auto& off = extended_families_.offsets;
   for (int b = off[i]; b < off[i + 1]; ++b) {
     const int j = extended_families_.neighbors[b];
     for (int a = 0; a < 3; ++a) d[3 * (b - off[i]) + a] = y[3 * j + a] - y[3 * i + a];
   }
+}
+
+double SecondOrderModel::row_energy(int i, const double* y, double* d, double* gradient,
+                                    double* theta) const {
+  bond_vectors(i, y, d);
   return second_order_row_energy(row(i), d, gradient, theta);
 }
 

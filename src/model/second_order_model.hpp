@@ -76,6 +76,8 @@ class SecondOrderModel final : public Model, public Stiffness {
 
  private:
   SecondOrderRow row(int i) const;
+  // Row i's bond vectors d_b = y_j − y_i at the extended positions y, 3 per bond, into d.
+  void bond_vectors(int i, const double* y, double* d) const;
   // Row i's energy (and its gradient over d_b = y_j − y_i, with dilatation θ_i) at the extended
   // positions; d and gradient are scratch of 3 × its bonds.
   double row_energy(int i, const double* y, double* d, double* gradient, double* theta) const;

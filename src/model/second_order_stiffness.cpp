@@ -83,11 +83,7 @@ void SecondOrderModel::assemble_tangent(const double* y, SparseSymmetric& K, boo
 #pragma omp for schedule(dynamic, 8)
     for (int i = 0; i < n; ++i) {
       const SecondOrderRow r = row(i);
-      const auto& off = extended_families_.offsets;
-      for (int b = off[i]; b < off[i + 1]; ++b)
-        for (int a = 0; a < 3; ++a)
-          d[3 * (b - off[i]) + a] =
-              positions_[3 * extended_families_.neighbors[b] + a] - positions_[3 * i + a];
+      bond_vectors(i, positions_.data(), d.data());
       second_order_row_hessian(r, d.data(), H);
       fold_row(i, folded);
       const int u = static_cast<int>(folded.touched.size());
@@ -140,11 +136,7 @@ void SecondOrderModel::apply_tangent(const double* v, double* out) const {
 #pragma omp for schedule(dynamic, 16)
     for (int i = 0; i < n; ++i) {
       const SecondOrderRow r = row(i);
-      const auto& off = extended_families_.offsets;
-      for (int b = off[i]; b < off[i + 1]; ++b)
-        for (int a = 0; a < 3; ++a)
-          d[3 * (b - off[i]) + a] =
-              linearized_at_[3 * extended_families_.neighbors[b] + a] - linearized_at_[3 * i + a];
+      bond_vectors(i, linearized_at_.data(), d.data());
       second_order_row_hessian(r, d.data(), H);
       fold_row(i, folded);
       Pv.setZero(3 * r.bonds);

@@ -40,6 +40,12 @@ std::vector<double> deformed(const Particles& p, const Eigen::Matrix3d& H,
   return y;
 }
 
+// A finite deformation: a random curvature of size 0.05 and a random strain of size 0.01.
+std::vector<double> randomly_deformed(const Particles& p, std::mt19937& rng) {
+  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.05);
+  return deformed(p, 0.01 * test::random_matrix(rng), Gamma);
+}
+
 double total_energy(SecondOrderModel& model, const std::vector<double>& y) {
   std::vector<double> f(y.size());
   return model.forces_and_energy(y.data(), f.data());
@@ -145,8 +151,7 @@ TEST(SecondOrderModel, TangentIsTheDerivativeOfTheForces) {
   const Scene scene = block();
   const auto model = make_second_order_model(scene, material_points(scene));
   std::mt19937 rng(6);
-  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.05);
-  const std::vector<double> y = deformed(scene.particles, 0.01 * test::random_matrix(rng), Gamma);
+  const std::vector<double> y = randomly_deformed(scene.particles, rng);
   Stiffness& stiffness = *model->stiffness();
   EXPECT_FALSE(stiffness.one_hop_matrices());
   SparseSymmetric K = stiffness.tangent_pattern(scene.families);
@@ -185,8 +190,7 @@ TEST(SecondOrderModel, EnergyAndForcesAreObjective) {
   const Scene scene = block();
   const auto model = make_second_order_model(scene, material_points(scene));
   std::mt19937 rng(4);
-  const std::array<Eigen::Matrix3d, 3> Gamma = test::random_curvature(rng, 0.05);
-  const std::vector<double> y = deformed(scene.particles, 0.01 * test::random_matrix(rng), Gamma);
+  const std::vector<double> y = randomly_deformed(scene.particles, rng);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.3, 1, -0.5).normalized()).toRotationMatrix();
   std::vector<double> turned(y.size()), f(y.size()), turned_f(y.size());
