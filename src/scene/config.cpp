@@ -340,7 +340,7 @@ Constraint read_clamp(const YamlReader& r, const YAML::Node& node, const std::st
   const std::string p = join(path, "clamp");
   r.check_keys(node["clamp"], p, {"point", "normal"});
   Constraint c;
-  c.clamp = c.fix = true;
+  c.clamp = true;
   c.clamp_point = r.vec3(node["clamp"]["point"], join(p, "point"));
   c.clamp_normal = r.vec3(node["clamp"]["normal"], join(p, "normal"));
   const double length =

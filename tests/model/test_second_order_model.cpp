@@ -143,7 +143,8 @@ TEST(SecondOrderModel, ForcesAreMinusTheGradientOfTheEnergy) {
 
 // The stiffness (second_order_stiffness.cpp) is the derivative of the forces: at a finite
 // deformation, K v assembled on the model's own pattern against −(f(y + hv) − f(y − hv))/2h along
-// random directions (central differences: truncation O(h²), round-off about 1e-9 of K v here),
+// random directions (central differences: truncation O(h²), round-off about 1e-9 of K v here,
+// asserted below 1e-8; measured 1.1e-10),
 // and the matrix-free product equal to the assembled one to round-off. A fold that dropped the
 // images' stencils, a pattern missing a coupling (assembly would not find its entry) or a
 // transposed block fails by O(1).
@@ -180,7 +181,7 @@ TEST(SecondOrderModel, TangentIsTheDerivativeOfTheForces) {
                  product_ratio = std::sqrt(product_error / norm);
     std::printf("direction %d: |Kv - differences| / |Kv| %.2e, |matrix-free - Kv| / |Kv| %.2e\n",
                 trial, difference_ratio, product_ratio);
-    EXPECT_LT(difference_ratio, 1e-6);
+    EXPECT_LT(difference_ratio, 1e-8);
     EXPECT_LT(product_ratio, 1e-12);
   }
 }
