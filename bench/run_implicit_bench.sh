@@ -4,7 +4,9 @@
 # the default preconditioner (auto) and with `gamg`, `nearest` and `scalar` at every size, backward Euler
 # at 300× the explicit estimate. Prints one table: particles, preconditioner, seconds of the first step (it
 # factorizes) and of a later one (the second step, repeated: bench_implicit_step.cpp), µs per particle of a later step and its ratio to the smallest
-# scene's, Newton and Krylov iterations per step, peak memory.
+# scene's, Newton and Krylov iterations per step, peak memory. Then, per preconditioner, the spread of
+# µs per particle over the sizes (the largest over the smallest: issue 13's target is 3) and the
+# largest size's peak memory (the target is 8 GB).
 #   bench/run_implicit_bench.sh [BUILD_DIR] [SIZES...]     (default: build 1000 10000 100000)
 set -euo pipefail
 build=${1:-build}
@@ -13,8 +15,11 @@ sizes=("$@")
 ((${#sizes[@]})) || sizes=(1000 10000 100000)
 printf '%-10s %-15s %12s %10s %12s %8s %8s %8s %8s\n' particles preconditioner first_step_s step_s \
   us_per_particle ratio newton krylov peak_gb
+spreads=()
 for preconditioner in auto gamg nearest scalar; do
   base=""
+  lowest=""
+  highest=""
   for n in "${sizes[@]}"; do
     # Several later steps where one is short, so that the per-step time is not one sample.
     steps=$((n <= 2000 ? 10 : n <= 20000 ? 3 : 1))
@@ -27,8 +32,16 @@ for preconditioner in auto gamg nearest scalar; do
     used=$(get preconditioner_chosen)
     used=${used:-$preconditioner}
     [[ -n $base ]] || base=$per
+    lowest=$(echo "${lowest:-$per} $per" | awk '{print ($2 < $1 ? $2 : $1)}')
+    highest=$(echo "${highest:-$per} $per" | awk '{print ($2 > $1 ? $2 : $1)}')
+    peak=$(get peak_memory_gb)
     printf '%-10s %-15s %12s %10s %12s %8.2f %8s %8s %8s\n' "$(get particles)" "$used" \
       "$(get first_step_seconds)" "$(get step_seconds)" "$per" "$(echo "$per / $base" | bc -l)" \
-      "$(per_step newton_iterations)" "$(per_step krylov_iterations)" "$(get peak_memory_gb)"
+      "$(per_step newton_iterations)" "$(per_step krylov_iterations)" "$peak"
   done
+  spreads+=("$(printf '%-15s %6.2f %8s' "$preconditioner" "$(echo "$highest / $lowest" | bc -l)" "$peak")")
 done
+echo
+echo "preconditioner  spread  peak_gb   (spread: largest µs per particle over the smallest across the sizes;"
+echo "                                   peak_gb: at the largest size)"
+printf '%s\n' "${spreads[@]}"
