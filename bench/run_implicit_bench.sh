@@ -13,6 +13,8 @@ build=${1:-build}
 shift || true
 sizes=("$@")
 ((${#sizes[@]})) || sizes=(1000 10000 100000)
+# Smallest first: the ratio column is to the smallest scene, the spread's peak the largest's.
+mapfile -t sizes < <(printf '%s\n' "${sizes[@]}" | sort -n)
 printf '%-10s %-15s %12s %10s %12s %8s %8s %8s %8s\n' particles preconditioner first_step_s step_s \
   us_per_particle ratio newton krylov peak_gb
 spreads=()
@@ -32,8 +34,8 @@ for preconditioner in auto gamg nearest scalar; do
     used=$(get preconditioner_chosen)
     used=${used:-$preconditioner}
     [[ -n $base ]] || base=$per
-    lowest=$(echo "${lowest:-$per} $per" | awk '{print ($2 < $1 ? $2 : $1)}')
-    highest=$(echo "${highest:-$per} $per" | awk '{print ($2 > $1 ? $2 : $1)}')
+    read -r lowest highest < <(awk -v l="${lowest:-$per}" -v h="${highest:-$per}" -v p="$per" \
+      'BEGIN {print (p < l ? p : l), (p > h ? p : h)}')
     peak=$(get peak_memory_gb)
     printf '%-10s %-15s %12s %10s %12s %8.2f %8s %8s %8s\n' "$(get particles)" "$used" \
       "$(get first_step_seconds)" "$(get step_seconds)" "$per" "$(echo "$per / $base" | bc -l)" \
