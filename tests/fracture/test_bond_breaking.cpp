@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "fracture/bond_breaking.hpp"
 #include "fracture/prefilter_room.hpp"
@@ -124,6 +127,89 @@ TEST(BondBreaking, BondsWithinRoundOffOfTheCriterionGetTheExactDecision) {
     }
   }
   EXPECT_GE(cases, 80);
+}
+
+// α raises the threshold of damaged particles by exactly (1 + αφ) (docs/model.md, "Fracture":
+// the paper's text after Eq 19, not Eq 19 as printed; docs/config.md). α = 5 is set here: the
+// config's default, as the paper's (§5.1: "α is set to 0 by default"), is 0 (FractureSettings in
+// src/scene/config.hpp), which leaves α untested; 5 is docs/model.md's fragments figure. An
+// unbounded plane through the bar damages the particles beside it by a φ the test counts
+// itself, φ_i = (bonds of i crossing the plane)/N_i. A bond (i, j), intact and both ends
+// damaged, breaks when e > s_c(1 + αφ)δ in either row, i.e. at φ = min(φ_i, φ_j); moving j
+// along the bond to e = s_c(1 + αφ)δ(1 ± 1e-6) must break it only from above. Margin 1e-6: e
+// and the code's threshold carry round-off of about 1e-16 × |y| / e ≈ 1e-13 (|y| ≤ 0.2 m,
+// e ≥ s_c δ = 2.9e-4 m), and φ, the code's 1 − n_i/N_i, differs from the test's count by 1e-16.
+// A threshold off by a relative 1e-6 fails, and so does α off by 3e-6: the bonds tested have
+// φ ≥ 0.1, where (1 + αφ)/(αφ) ≤ 3. Both with the prefilter (elastic) and without it
+// (plasticity on, e^p = 0 before any return map).
+TEST(BondBreaking, DamageRaisesTheThresholdByOnePlusAlphaPhi) {
+  const double sc = 0.01, alpha = 5, delta = 1.45 * 0.02, plane = 0.1;
+  for (const char* plasticity : {"", ", plasticity: {yield: 1.0e9}"}) {
+    SCOPED_TRACE(*plasticity ? "with plasticity (no prefilter)" : "elastic (prefilter)");
+    const Scene scene = test::block_scene(
+        {.size = {0.2, 0.08, 0.08},
+         .resolution = 0.02,
+         .bulk = 2.0e6,
+         .shear = 1.0e6,
+         .material = fmt::format(", fracture: {{critical_stretch: {}, alpha: {}}}{}", sc, alpha,
+                                 plasticity),
+         .scene = fmt::format("initial_cracks:\n  - {{plane: {{point: [{}, 0, 0], normal: [1, 0, "
+                              "0]}}}}\n",
+                              plane)});
+    const auto& families = scene.families;
+    const auto& x = scene.particles.reference;
+    const int n = scene.particles.count();
+    auto crosses = [&](int i, int j) { return (x[3 * i] - plane) * (x[3 * j] - plane) < 0; };
+    std::vector<double> phi(n);
+    for (int i = 0; i < n; ++i) {
+      int crossing = 0;
+      for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
+        crossing += crosses(i, families.neighbors[b]);
+      phi[i] = static_cast<double>(crossing) / (families.offsets[i + 1] - families.offsets[i]);
+    }
+    // The bonds to test: intact, both ends damaged by φ ≥ 0.1 (αφ ≥ 0.5), 40 spread over them.
+    std::vector<std::pair<int, int>> candidates, cases;  // (i, b)
+    for (int i = 0; i < n; ++i)
+      for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b) {
+        const int j = families.neighbors[b];
+        if (j > i && !crosses(i, j) && std::min(phi[i], phi[j]) >= 0.1)
+          candidates.push_back({i, b});
+      }
+    for (std::size_t k = 0; k < 40 && k < candidates.size(); ++k)
+      cases.push_back(candidates[k * candidates.size() / 40]);
+    ASSERT_EQ(cases.size(), 40u);
+    auto model = make_model(scene);
+    double smallest = 1, largest = 0;
+    int unequal = 0, wrong = 0;
+    std::string first_wrong;
+    for (const auto& [i, b] : cases) {
+      const int j = families.neighbors[b];
+      const double damage = std::min(phi[i], phi[j]), xi = families.reference_length[b];
+      smallest = std::min(smallest, damage), largest = std::max(largest, damage);
+      unequal += phi[i] != phi[j];
+      const double threshold = sc * (1 + alpha * damage) * delta;  // e at the criterion
+      for (const double side : {1.0, -1.0}) {
+        BondBreaking breaking(scene, *model);
+        ASSERT_NEAR(breaking.damage()[i], phi[i], 1e-15) << "particle " << i;  // 1 − n/N
+        std::vector<double> y = x;
+        const double length = xi + threshold * (1 + side * 1e-6);
+        for (int k = 0; k < 3; ++k)
+          y[3 * j + k] = x[3 * i + k] + (x[3 * j + k] - x[3 * i + k]) * length / xi;
+        breaking.run(y.data());
+        if ((breaking.broken()[b] != 0) == (side > 0)) continue;
+        if (wrong++ == 0)
+          first_wrong = fmt::format(
+              "bond ({}, {}), phi {:.4f} and {:.4f}: e/(s_c delta) = {:.7f} = (1 + alpha phi)(1 "
+              "{:+.0e}) {}",
+              i, j, phi[i], phi[j], threshold * (1 + side * 1e-6) / (sc * delta), side * 1e-6,
+              side > 0 ? "did not break" : "broke");
+      }
+    }
+    std::printf("%zu bonds, min(phi_i, phi_j) from %.4f to %.4f (%d with phi_i != phi_j)\n",
+                cases.size(), smallest, largest, unequal);
+    EXPECT_EQ(wrong, 0) << "of " << 2 * cases.size() << " decisions; first: " << first_wrong;
+    EXPECT_GT(unequal, 0);
+  }
 }
 
 // Bonds broken so far against those a brute-force pass over every bond expects, after

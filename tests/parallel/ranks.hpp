@@ -1,13 +1,16 @@
 #pragma once
 // What the MPI tests share: this rank and their number, sums over the ranks, the slab they cut,
 // and what a rank knows of the positions (its own rows and, through the halo, its ghosts).
+#include <gtest/gtest.h>
 #include <petscsys.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "model/model.hpp"
@@ -27,6 +30,18 @@ inline int ranks() {
   int size = 0;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   return size;
+}
+
+// MPI_Barrier on `comm`, sleeping between polls: OpenMPI's blocking barrier spins, and on a
+// machine with fewer cores than ranks the spinning ranks halve the speed of a rank that computes
+// alone (a one-rank reference run), where a sleeping one leaves it the core.
+inline void idle_barrier(MPI_Comm comm = PETSC_COMM_WORLD) {
+  MPI_Request request;
+  ASSERT_EQ(MPI_Ibarrier(comm, &request), MPI_SUCCESS);
+  for (int done = 0;; std::this_thread::sleep_for(std::chrono::milliseconds(1))) {
+    ASSERT_EQ(MPI_Test(&request, &done, MPI_STATUS_IGNORE), MPI_SUCCESS);
+    if (done) return;
+  }
 }
 
 inline long sum_over_ranks(long value) {

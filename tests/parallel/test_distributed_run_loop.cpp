@@ -110,7 +110,7 @@ RunSummary run_on(
     summary = run_simulation(config, options);
     MPI_Comm_free(&comm);
   }
-  MPI_Barrier(PETSC_COMM_WORLD);
+  test::idle_barrier();
   return summary;
 }
 
@@ -120,7 +120,7 @@ std::string scratch(const std::string& name) {
   const fs::path dir =
       fs::temp_directory_path() / fmt::format("fissure_parallel_{}_{}", name, test::ranks());
   if (test::rank() == 0) fs::remove_all(dir);
-  MPI_Barrier(PETSC_COMM_WORLD);
+  test::idle_barrier();
   return dir.string();
 }
 
@@ -152,7 +152,7 @@ long differing_entries(const std::string& a, const std::string& b) {
 void copy_run(const std::string& from, const std::vector<std::string>& copies) {
   if (test::rank() == 0)
     for (const std::string& copy : copies) fs::copy(from, copy, fs::copy_options::recursive);
-  MPI_Barrier(PETSC_COMM_WORLD);
+  test::idle_barrier();
 }
 
 // The energy ledger's entry `name` in a run's summary, NaN when it has none.
@@ -502,7 +502,7 @@ TEST(DistributedRunLoop, NonFiniteStateNamesOneRanksParticleOnEveryRank) {
       }
       MPI_Comm_free(&comm);
     }
-    MPI_Barrier(PETSC_COMM_WORLD);
+    test::idle_barrier();
     return message;
   };
   std::string one = stopped_on(1, scratch("nonfinite_one"));  // on rank 0
@@ -532,7 +532,7 @@ TEST(DistributedRunLoop, MoreRanksThanParticlesIsRefusedOnEveryRank) {
   if (test::ranks() < 3) GTEST_SKIP() << "two particles split over one or two ranks";
   const std::string dir = scratch("too_few"), points = dir + "_points.txt";
   if (test::rank() == 0) std::ofstream(points) << "0 0 0 1e-6\n0.01 0 0 1e-6\n";
-  MPI_Barrier(PETSC_COMM_WORLD);
+  test::idle_barrier();
   const std::string yaml = fmt::format(
       "time: {{end: 1.0e-3, dt: auto}}\n"
       "integrator: {{type: velocity_verlet}}\n"
@@ -587,7 +587,7 @@ TEST(DistributedRunLoop, AWriteFailingOnOneRankStopsEveryRank) {
   if (last > 0) {
     EXPECT_NE(message.find(fmt::format("(on rank {})", last)), std::string::npos) << message;
   }
-  MPI_Barrier(PETSC_COMM_WORLD);
+  test::idle_barrier();
   if (test::rank() != 0) return;
   std::ifstream summary(dir + "/summary.json");
   const std::string text((std::istreambuf_iterator<char>(summary)),
