@@ -10,7 +10,6 @@
 #include <random>
 #include <vector>
 
-#include "contact/contact_particles.hpp"
 #include "contact/self_contact.hpp"
 #include "model/model.hpp"
 #include "scene/config.hpp"
@@ -34,11 +33,28 @@ bool bonded(const Scene& scene, const Model& model, int i, int j) {
   return false;
 }
 
+// What docs/config.md (contact) gives each particle, computed here from the scene's volumes and
+// kTwoBlocks' bulk moduli rather than by contact_particles: its radius r = ½V^(1/3) and its
+// penalty stiffness k = contact.stiffness × κ × V^(1/3), contact.stiffness 1 by default.
+struct ContactSizes {
+  std::vector<double> radius, stiffness;
+};
+ContactSizes documented_sizes(const Scene& scene) {
+  const double bulk_modulus[2] = {1.0e6, 2.0e6};
+  ContactSizes c;
+  for (int i = 0; i < scene.particles.count(); ++i) {
+    const double size = std::cbrt(scene.particles.volume[i]);
+    c.radius.push_back(0.5 * size);
+    c.stiffness.push_back(bulk_modulus[scene.particles.body[i]] * size);
+  }
+  return c;
+}
+
 // Every pair, the formula of docs/config.md (contact.self): k (r_i + r_j − d) n, k the mean of
 // the two particles' stiffness, pairs bonded by an intact bond left out.
 std::vector<double> brute_force(const Scene& scene, const Model& model,
                                 const std::vector<double>& y) {
-  const auto c = contact_particles(scene);
+  const ContactSizes c = documented_sizes(scene);
   const int n = scene.particles.count();
   std::vector<double> f(3 * n, 0.0);
   for (int i = 0; i < n; ++i)
@@ -99,7 +115,7 @@ TEST(SelfContact, VerletListMatchesEveryPairAsParticlesMoveAndBondsBreak) {
   const int n = scene.particles.count();
   const double skin = contact.skin();
   ASSERT_GT(skin, 0);
-  const auto c = contact_particles(scene);
+  const ContactSizes c = documented_sizes(scene);
   const Families& fam = scene.families;
   const auto reach_of = [&](int i, int j) { return c.radius[i] + c.radius[j]; };
   auto distance_between = [&](const std::vector<double>& x, int i, int j) {
