@@ -464,6 +464,22 @@ TEST(DistributedRunLoop, WhatCannotRunOverRanksYetIsRefusedWithItsKey) {
     EXPECT_NE(message.find(expected), std::string::npos) << message;
     EXPECT_FALSE(fs::exists(dir));
   }
+  // the second-order model, on a slab without fracture (it has none yet)
+  std::string message;
+  try {
+    RunOptions options;
+    options.comm = PETSC_COMM_WORLD;
+    run_simulation(stretched_slab(dir, 1e-6, "BOGACKI_SHAMPINE_4_2_3",
+                                  {"bodies.0.material.surface_correction=fictitious"}),
+                   options);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("bodies[0].material.surface_correction: fictitious cannot run over "
+                         "several ranks yet"),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(dir));
 }
 
 Config exploding_slab(const std::string& dir) {
