@@ -62,7 +62,7 @@ double compare(const test::Vibration& v, const char* scheme, const Trajectory& a
   return relative;
 }
 
-// 40 steps at 20× the explicit estimate. A fresh factorization at every Newton iteration is
+// 20 steps at 20× the explicit estimate. A fresh factorization at every Newton iteration is
 // Newton's method; reuse is modified Newton with the same stopping rule, so both stop within
 // 1e-10 of each stage's first residual of the same minimiser: measured differences are far below
 // the 1e-7 of the motion asserted (a factor applied at a wrong A or a stale residual would miss
@@ -70,11 +70,12 @@ double compare(const test::Vibration& v, const char* scheme, const Trajectory& a
 TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
   auto v = test::make_vibration();
   const double dt = 20 * v->stable_dt;
+  constexpr int kSteps = 20;
   for (const char* scheme : {"backward_euler", "newmark", "sdirk4"}) {
     PetscNewtonSettings fresh = newton(scheme);
     fresh.reuse_factor = false;
-    const Trajectory reused = simulate(*v, newton(scheme), 40, dt);
-    const Trajectory every = simulate(*v, fresh, 40, dt);
+    const Trajectory reused = simulate(*v, newton(scheme), kSteps, dt);
+    const Trajectory every = simulate(*v, fresh, kSteps, dt);
     EXPECT_LT(compare(*v, scheme, reused, "reuse", every, "fresh"), 1e-7) << scheme;
     EXPECT_EQ(test::statistic(*every.integrator, "factorizations"),
               test::statistic(*every.integrator, "newton_iterations"))
@@ -94,7 +95,7 @@ TEST(FactorReuse, GivesTheTrajectoryOfAFreshFactorizationAtEveryIteration) {
     // refresh per implicit stage (SDIRK4: 5 per step), where a refresh at every Newton iteration
     // would make one per iteration. That the factor is kept when nothing asks for a refresh is
     // counted exactly by the next test.
-    const double stages = 40.0 * (std::string(scheme) == "sdirk4" ? 5 : 1);
+    const double stages = kSteps * (std::string(scheme) == "sdirk4" ? 5.0 : 1.0);
     EXPECT_LE(test::statistic(r, "refreshes_convergence"), stages) << scheme;
   }
 }
