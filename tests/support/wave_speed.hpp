@@ -1,6 +1,6 @@
 #pragma once
 // A longitudinal wave in a long thin bar travels at the bar speed c = √(E/ρ): the measurement
-// tests/integrators/test_wave_speed.cpp and tests/verification/ share.
+// tests/verification/test_wave_speed.cpp and test_wave_speed_fictitious.cpp share.
 #include <gtest/gtest.h>
 
 #include <cmath>
