@@ -186,12 +186,13 @@ TEST(LargeStep, GeneralizedAlphaDissipatesMoreAtASmallerRhoInfinity) {
 // every mode's energy shrinks each step): the energy never grows and ends below the start. Each
 // stage is solved to 1e-10 of its first residual: at the default 1e-6 the five stages' Newton
 // errors let the energy grow by up to 1e-7 E0 in a step (measured 9.9e-8 E0 for sdirk4) once
-// little energy is left; at 1e-10 the bound is the backward Euler test's 1e-9.
+// little energy is left; at 1e-10 the bound is the backward Euler test's 1e-9. Over 100 steps,
+// as LargeStepArkode below.
 class LargeStepSdirk : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(LargeStepSdirk, EnergyNeverGrows) {
   auto a = anchored_bar();
-  const Released run = run_hundred_times(*a, petsc(GetParam(), "-snes_rtol 1e-10"));
+  const Released run = run_hundred_times(*a, petsc(GetParam(), "-snes_rtol 1e-10"), 100);
   ASSERT_FALSE(run.position.empty());
   EXPECT_LT(run.worst_growth, 1e-9);
   EXPECT_LT(run.final_energy, 1.0);
@@ -202,11 +203,11 @@ TEST_P(LargeStepSdirk, EnergyNeverGrows) {
 // does: at every step |E − E_solved| is under 0.1% of the energy E0 − E_solved the solved
 // scheme has lost by then (measured 1.3e-4; with the fraction at 1 instead of 1%, 1.1e-2).
 // The energy may grow within a step by the Newton error (measured up to 1.2e-6 E0), which is
-// why the test above solves to 1e-10.
+// why the test above solves to 1e-10. Over its 100 steps.
 TEST(LargeStepSdirkErrorTest, DissipatesAsTheSolvedScheme) {
   auto a = anchored_bar();
-  const Released run = run_hundred_times(*a, petsc("esdirk4"));
-  const Released solved = run_hundred_times(*a, petsc("esdirk4", "-snes_rtol 1e-10"));
+  const Released run = run_hundred_times(*a, petsc("esdirk4"), 100);
+  const Released solved = run_hundred_times(*a, petsc("esdirk4", "-snes_rtol 1e-10"), 100);
   ASSERT_EQ(run.energy.size(), solved.energy.size());
   double worst = 0;
   for (std::size_t k = 0; k < run.energy.size(); ++k)

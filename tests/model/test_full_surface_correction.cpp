@@ -332,12 +332,12 @@ TEST(FullSurfaceCorrection, MajoriserIsPositiveSemidefiniteAndDominatesTheTangen
     model->stiffness()->assemble_majoriser(y.data(), bw);
     model->stiffness()->assemble_tangent(y.data(), K, false);
     const Eigen::MatrixXd A = test::dense(bw), T = test::dense(K);
-    const double top = largest_eigenvalue(A), bw_min = smallest_eigenvalue(A),
-                 gap_min = smallest_eigenvalue(A - T), tangent_top = largest_eigenvalue(T);
-    std::printf(
-        "strain %+.2f: min eig K^bw %.2e, min eig (K^bw - K) %.2e of max eig K^bw %.3e; "
-        "max eig K^bw / max eig K %.2f\n",
-        strain, bw_min / top, gap_min / top, top, top / tangent_top);
+    const Eigen::VectorXd eig_bw =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues();
+    const double top = eig_bw.maxCoeff(), bw_min = eig_bw.minCoeff(),
+                 gap_min = smallest_eigenvalue(A - T);
+    std::printf("strain %+.2f: min eig K^bw %.2e, min eig (K^bw - K) %.2e of max eig K^bw %.3e\n",
+                strain, bw_min / top, gap_min / top, top);
     EXPECT_LT((A - A.transpose()).cwiseAbs().maxCoeff(), 1e-12 * A.cwiseAbs().maxCoeff());
     EXPECT_GT(bw_min, -1e-12 * top);
     EXPECT_GT(gap_min, -1e-12 * top);
