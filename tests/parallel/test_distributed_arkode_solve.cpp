@@ -5,8 +5,9 @@
 // rank's rows alone, or whose block factor missed a rank's held rows, leaves a larger residual:
 // ARKODE's own Newton iteration would still converge to its tolerance around it, so the
 // trajectories alone (DistributedRunLoop.ArkodeImplicitAndImexWithinTheirTolerance) do not
-// show it. Measured: 258 solves, the worst at 0.765 of tol on 1, 2, 3 and 4 ranks; with CG's
-// dot products over the rank's rows alone, 4,050 on 2 ranks.
+// show it. Measured over 1 ms: 258 solves, the worst at 0.765 of tol (reached in the first 50) on
+// 1, 2, 3 and 4 ranks (over its first 0.5 ms: 158, the same worst on 2 ranks); with CG's dot
+// products over the rank's rows alone, 4,050 on 2 ranks.
 #include <arkode/arkode_arkstep.h>
 #include <gtest/gtest.h>
 #include <nvector/nvector_mpiplusx.h>
@@ -104,8 +105,8 @@ int implicit_rhs(realtype t, N_Vector u, N_Vector u_dot, void* data) {
 }
 
 // The slab held at its left end and set bending (a velocity growing along it), stepped by
-// ARK436L2SA's implicit table at rtol 1e-6 over 1 ms with the reduced solver wrapped: tens of
-// γ changes, CG on every solve (nearest: block Jacobi over the ranks).
+// ARK436L2SA's implicit table at rtol 1e-6 over the first 0.5 ms of 1 ms with the reduced solver
+// wrapped: tens of γ changes, CG on every solve (nearest: block Jacobi over the ranks).
 TEST(DistributedArkodeSolve, EverySolveMeetsArkodesToleranceOnTheWholeStageSystem) {
   const Scene scene = test::slab(
       "", "constraints:\n  - {region: {box: {min: [-1, -1, -1], max: [0.03, 1, 1]}}, fix: true}\n");
@@ -156,8 +157,12 @@ TEST(DistributedArkodeSolve, EverySolveMeetsArkodesToleranceOnTheWholeStageSyste
   EXPECT_GE(ARKStepSStolerances(memory, 1e-6, 1e-9), 0);
   EXPECT_GE(ARKStepSetLinearSolver(memory, wrapper, nullptr), 0);
   EXPECT_GE(ARKStepSetMaxNonlinIters(memory, 10), 0);
+  // the steps of the first 0.5 ms of a run to 1 ms (its first step size depends on tout)
   realtype reached = 0;
-  EXPECT_GE(ARKStepEvolve(memory, 1e-3, u, &reached, ARK_NORMAL), 0);
+  for (int flag = 0; flag >= 0 && reached < 0.5e-3;) {
+    flag = ARKStepEvolve(memory, 1e-3, u, &reached, ARK_ONE_STEP);
+    EXPECT_GE(flag, 0);
+  }
   EXPECT_FALSE(error) << "a solve threw";
   if (test::rank() == 0) std::printf("%ld solves, worst %.3g of tol\n", c.solves, c.worst);
   EXPECT_GT(c.solves, 100);
