@@ -212,19 +212,6 @@ TEST(BondBreaking, DamageRaisesTheThresholdByOnePlusAlphaPhi) {
   }
 }
 
-// Whether extension(scene, y, i, b) > threshold: from the squared length where it is clear by a
-// relative 1e-9 (far above round-off), from extension() itself where it is close.
-bool past(const Scene& scene, const std::vector<double>& y, int i, int b, double threshold) {
-  const int j = scene.families.neighbors[b];
-  double squared = 0;
-  for (int k = 0; k < 3; ++k)
-    squared += (y[3 * j + k] - y[3 * i + k]) * (y[3 * j + k] - y[3 * i + k]);
-  const double critical = scene.families.reference_length[b] + threshold;
-  if (squared < critical * critical * (1 - 1e-9)) return false;
-  if (squared > critical * critical * (1 + 1e-9)) return true;
-  return extension(scene, y, i, b) > threshold;
-}
-
 // Bonds broken so far against those a brute-force pass over every bond expects, after
 // `breaking` ran at y: a bond breaks for good once its extension passed `threshold` = s_c δ
 // (α = 0).
@@ -234,16 +221,16 @@ void expect_exact_breaks(const Scene& scene, const BondBreaking& breaking,
   const auto& families = scene.families;
   for (int i = 0; i < scene.particles.count(); ++i)
     for (int b = families.offsets[i]; b < families.offsets[i + 1]; ++b)
-      if (!expected[b] && past(scene, y, i, b, threshold)) {
+      if (!expected[b] && extension(scene, y, i, b) > threshold) {
         expected[b] = 1;
         expected[families.reverse[b]] = 1;
       }
   // The first bond that differs, if any (one assertion, not one per bond).
   const auto& broken = breaking.broken();
-  std::size_t b = 0;
-  while (b < expected.size() && (broken[b] != 0) == (expected[b] != 0)) ++b;
-  if (b < expected.size())
-    ASSERT_EQ(broken[b] != 0, expected[b] != 0) << "bond " << b << ", step " << step;
+  const auto differs = std::mismatch(broken.begin(), broken.end(), expected.begin(),
+                                     [](auto a, auto b) { return (a != 0) == (b != 0); });
+  ASSERT_TRUE(differs.first == broken.end())
+      << "bond " << differs.first - broken.begin() << ", step " << step;
 }
 
 // find() skips the rows whose bonds cannot have reached the criterion since it last looked,
@@ -364,9 +351,10 @@ TEST(BondBreaking, PulledBarComesApartAndBondsNeverHeal) {
     integrator->step(dynamics, state, dt);
     if (breaking.run(state.position.data()) > 0) integrator->bonds_changed();
     const auto& broken = breaking.broken();
-    std::size_t b = 0;  // the first bond that healed, if any
-    while (b < was_broken.size() && broken[b] >= was_broken[b]) ++b;
-    if (b < was_broken.size()) ASSERT_GE(broken[b], was_broken[b]) << "bond " << b << " healed";
+    const auto healed = std::mismatch(broken.begin(), broken.end(), was_broken.begin(),
+                                      [](auto now, auto before) { return now >= before; });
+    ASSERT_TRUE(healed.first == broken.end())
+        << "bond " << healed.first - broken.begin() << " healed";
     was_broken = broken;
   }
   for (double phi : breaking.damage()) {
