@@ -101,12 +101,17 @@ void Arkode::check(const Dynamics& dynamics) const {
                      fmt::format("'{}' is implicit, and material.model '{}' provides no "
                                  "stiffness; use material.model: lps or an explicit method",
                                  method_.name, dynamics.model().name()));
+  // ARKODE's linear solver keeps the factor of the first step, whose size ARKODE picks near
+  // 1e-13 s, while the step grows by orders of magnitude: with one-hop matrices CG's iterations
+  // stay cheap; without them every iteration rebuilds each row's Hessian, and a free vibrating
+  // block of 250 particles did not get past 2 µs in minutes (docs/integrators.md).
   if (method_.kind != ArkodeMethod::Kind::explicit_rk &&
-      settings_.preconditioner == ArkodeSettings::Preconditioner::nearest &&
       !dynamics.model().stiffness()->one_hop_matrices())
-    throw InputError(file_, "integrator.preconditioner",
-                     "this model factors its tangent only (surface_correction: fictitious): use "
-                     "auto or tangent");
+    throw InputError(file_, "integrator.method",
+                     fmt::format("'{}' is implicit, and ARKODE's linear solver needs the nearest "
+                                 "members' matrices, which surface_correction: fictitious has "
+                                 "not; use integrator.type: petsc_newton or an explicit method",
+                                 method_.name));
 }
 
 double Arkode::step(Dynamics& dynamics, State& state, double dt) {
@@ -164,9 +169,7 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
         using P = ArkodeSettings::Preconditioner;
         P kind = settings_.preconditioner;
         if (kind == P::automatic)
-          kind = dynamics.model().stiffness()->one_hop_matrices()
-                     ? choose_arkode_preconditioner(s.origin.size() / 3, s.distributed)
-                     : P::tangent;
+          kind = choose_arkode_preconditioner(s.origin.size() / 3, s.distributed);
         s.reduced = std::make_unique<ReducedNewtonSystem>(
             dynamics, s.memory, s.origin, settings_.reuse_factor, settings_.refresh_krylov,
             settings_.factor_precision, kind == P::nearest);
@@ -246,9 +249,9 @@ Statistics Arkode::arkode_counters() const {
     arkode_check(ARKStepGetNumNonlinSolvConvFails(m, &convergence_failures),
                  "ARKStepGetNumNonlinSolvConvFails");
     arkode_check(ARKStepGetNumLinSolvSetups(m, &setups), "ARKStepGetNumLinSolvSetups");
-    stats.push_back({"newton_iterations", double(newton)});
-    stats.push_back({"newton_convergence_failures", double(convergence_failures)});
-    stats.push_back({"linear_setups", double(setups)});
+    stats.emplace_back("newton_iterations", double(newton));
+    stats.emplace_back("newton_convergence_failures", double(convergence_failures));
+    stats.emplace_back("linear_setups", double(setups));
   }
   for (std::size_t k = 0; k < solver_->carried.size(); ++k)
     stats[k].second += solver_->carried[k].second;

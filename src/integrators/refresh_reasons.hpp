@@ -22,11 +22,11 @@ struct Refreshes {
   std::array<long, reasons> count{};  // per reason
   // refreshes_step_size, _bonds_broken, _convergence, _fallback, _every_iteration
   void append_to(Statistics& stats) const {
-    stats.push_back({"refreshes_step_size", double(count[step_size])});
-    stats.push_back({"refreshes_bonds_broken", double(count[bonds])});
-    stats.push_back({"refreshes_convergence", double(count[convergence])});
-    stats.push_back({"refreshes_fallback", double(count[fallback])});
-    stats.push_back({"refreshes_every_iteration", double(count[every_iteration])});
+    stats.emplace_back("refreshes_step_size", double(count[step_size]));
+    stats.emplace_back("refreshes_bonds_broken", double(count[bonds]));
+    stats.emplace_back("refreshes_convergence", double(count[convergence]));
+    stats.emplace_back("refreshes_fallback", double(count[fallback]));
+    stats.emplace_back("refreshes_every_iteration", double(count[every_iteration]));
   }
 };
 

@@ -13,6 +13,7 @@
 #include "model/model.hpp"
 #include "scene/config.hpp"
 #include "scene/scene.hpp"
+#include "support/eigenvalues.hpp"
 
 namespace fissure {
 namespace {
@@ -41,9 +42,7 @@ Eigen::MatrixXd mass_scaled(const SparseSymmetric& K, const Particles& p) {
 // The eigenvalues alone (no eigenvectors accumulated): the same tridiagonal QR, several times
 // cheaper.
 double largest_eigenvalue(const Eigen::MatrixXd& S) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S, Eigen::EigenvaluesOnly)
-      .eigenvalues()
-      .maxCoeff();
+  return test::symmetric_eigenvalues(S).maxCoeff();
 }
 
 // The two Gershgorin bounds on λ_max(S^bw) that docs/model.md states, read off the assembled

@@ -18,6 +18,7 @@
 #include "model/deviatoric_calibration.hpp"
 #include "model/dilatation_calibration.hpp"
 #include "model/second_order_model.hpp"
+#include "support/eigenvalues.hpp"
 #include "support/error_message.hpp"
 #include "support/random_fields.hpp"
 #include "support/scenes.hpp"
@@ -356,10 +357,7 @@ TEST(SecondOrderModel, StableTimeStepIsTheDocumentedBound) {
     for (int r = 0; r < dofs; ++r)
       S(r, k) = -(f_plus[r] - f_minus[r]) / (2 * h) / std::sqrt(p.mass[r / 3] * p.mass[k / 3]);
   }
-  const double lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (S + S.transpose()),
-                                                                       Eigen::EigenvaluesOnly)
-                            .eigenvalues()
-                            .maxCoeff();
+  const double lambda = test::symmetric_eigenvalues(0.5 * (S + S.transpose())).maxCoeff();
   const RebuiltRows rows = rebuild_rows(scene, *model);
   std::vector<double> row_sum(x.size(), 0.0);  // Σ_i |P_i|ᵀ|H_i||P_i| 1
   for (int i = 0; i < p.count(); ++i) {
@@ -624,8 +622,8 @@ TEST(SecondOrderModel, ConfigFitsImageStencilsWithinOneAndAHalfHorizons) {
 }
 
 // What the model cannot do is refused at load, naming the key: a clamp without it or off the
-// body's faces, fracture, plasticity, initial cracks; and an implicit integrator asking for a
-// one-hop matrix it lacks.
+// body's faces, fracture, plasticity, initial cracks; an implicit integrator asking for a
+// one-hop matrix it lacks, and ARKODE's implicit methods.
 TEST(SecondOrderModel, ConfigRefusesWhatItCannotModel) {
   const std::string fictitious = ", surface_correction: fictitious";
   test::expect_input_error([&] { parse_config(fictitious_scene("", kClamp), "a.yaml"); }, "a.yaml",
@@ -676,6 +674,30 @@ TEST(SecondOrderModel, ConfigRefusesWhatItCannotModel) {
   auto integrator = make_integrator(scene.config.integrator, "a.yaml");
   test::expect_input_error([&] { integrator->check(dynamics); }, "a.yaml",
                            "integrator.preconditioner: this model factors its tangent only");
+  // ARKODE: every implicit and IMEX method refused, whatever the preconditioner; an explicit
+  // one runs.
+  for (const char* method : {"ARK436L2SA", "SDIRK_2_1_2", "KVAERNO_4_2_3"})
+    for (const char* preconditioner : {"auto", "tangent", "nearest"}) {
+      auto arkode = make_integrator(
+          parse_config(
+              fictitious_scene(fictitious, fmt::format("integrator: {{type: arkode, method: {}, "
+                                                       "preconditioner: {}}}\n",
+                                                       method, preconditioner)),
+              "a.yaml")
+              .integrator,
+          "a.yaml");
+      test::expect_input_error([&] { arkode->check(dynamics); }, "a.yaml",
+                               fmt::format("integrator.method: '{}' is implicit, and ARKODE's "
+                                           "linear solver needs the nearest members' matrices",
+                                           method));
+    }
+  auto explicit_rk = make_integrator(
+      parse_config(fictitious_scene(fictitious,
+                                    "integrator: {type: arkode, method: DORMAND_PRINCE_7_4_5}\n"),
+                   "a.yaml")
+          .integrator,
+      "a.yaml");
+  EXPECT_NO_THROW(explicit_rk->check(dynamics));
 }
 
 }  // namespace

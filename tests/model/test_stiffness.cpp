@@ -7,6 +7,7 @@
 
 #include "linear/sparse_symmetric.hpp"
 #include "model/model.hpp"
+#include "support/eigenvalues.hpp"
 #include "support/stiffness_block.hpp"
 
 namespace fissure {
@@ -63,9 +64,7 @@ TEST(Stiffness, ExactTangentMatchesForceDifferencesWithFrozenPlasticExtension) {
 }
 
 // The eigenvalues of a dense symmetric matrix, without its eigenvectors.
-Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& A) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues();
-}
+Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& A) { return test::symmetric_eigenvalues(A); }
 
 // min eig(K^bw) ≥ 0 and min eig(K^bw − K) ≥ 0, to round-off (1e-12 of the largest eigenvalue),
 // in stretched and compressed states; in compression the exact tangent itself is indefinite,

@@ -87,10 +87,10 @@ IntegratorSettings newmark() {
 
 // The swing of `scene`'s beam (at `resolution`) from the first mode shape, as described above,
 // with `integrator` at step dt (0: 0.9 × the model's stable step).
-Swing first_mode_swing(
-    const Scene& scene, double resolution,
-    const IntegratorSettings& integrator_settings = IntegratorSettings{.type = "velocity_verlet"},
-    double dt = 0) {
+Swing first_mode_swing(const Scene& scene, double resolution,
+                       const IntegratorSettings& integrator_settings =
+                           IntegratorSettings{.type = "velocity_verlet", .options = {}},
+                       double dt = 0) {
   using C = Cantilever;
   const double amplitude = 1e-3;
   auto model = make_model(scene);
