@@ -1,4 +1,4 @@
-// The embedded mesh's splitting cost per step (paper §5.2, issue 4) against the number of crack
+// The embedded mesh's splitting cost per step (paper §5.2) against the number of crack
 // faces and the mesh size. A zig-zag crack (every face between tets whose barycentres lie on
 // both sides of x = 0.5) grows through TetGen boxes of three sizes, `per_step` faces per step;
 // each step runs the vertex-splitting pass. Prints one line per mesh and crack rate: tets,

@@ -1,4 +1,4 @@
-// Weak scaling of the distributed explicit step (issue 18): an elastic bar whose
+// Weak scaling of the distributed explicit step (docs/mpi.md): an elastic bar whose
 // length grows with the number of ranks, so that each rank owns about the same number of
 // particles; each step is velocity Verlet's step over the rank's own rows (the ghosts'
 // positions and dilatation terms through the halo) and the fracture post-step's search. Run

@@ -47,7 +47,7 @@ double seconds_per_step(const std::string& yaml, int steps) {
 // Best of seven timings of `calls` force evaluations by the model's elastic kernel and by the
 // kernel with no effect code, alternating; prints both, their ratio, how far their forces differ
 // (both sum each row in the same lanes: 0) and how far the model's differ from the same forces
-// summed in bond order (issue 17: within 1e-12 of the kernel before the eight-lane rows).
+// summed in bond order (the target: within 1e-12 of the kernel before the eight-lane rows).
 void compare_with_no_effect_code(const std::string& yaml, int calls) {
   const fissure::Scene scene = fissure::build_scene(fissure::parse_config(yaml, "bench.yaml"));
   auto model = fissure::make_model(scene);

@@ -1,5 +1,5 @@
-// An independent reference for the cantilever of the verification tests (tests/support/beam.hpp;
-// issue 15): its static deflection under gravity by linear elasticity in 3D, with quadratic
+// An independent reference for the cantilever of the verification tests (tests/support/beam.hpp):
+// its static deflection under gravity by linear elasticity in 3D, with quadratic
 // (10-node) tetrahedra, against Timoshenko's beam theory, which the tests compare to.
 // The 1.0 × 0.1 × 0.1 m box is cut into nx × n × n cubes (nx = 10 n), each into the 6 tets
 // around its main diagonal (Kuhn), so the mesh conforms and every quadratic node lies on the

@@ -1,4 +1,4 @@
-// Issue 15, an exploration: can fictitious particles outside the free faces remove the bending
+// An exploration: can fictitious particles outside the free faces remove the bending
 // error that neither surface correction removes? For the cantilever of tests/support/beam.hpp
 // (1.0 × 0.1 × 0.1 m, clamped behind x = 0) sampled with 2, 3 and 4 tets through its thickness,
 // from the linearised LPS energy (fictitious/linear_lps_stiffness.hpp), assembled densely:

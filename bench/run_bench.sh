@@ -10,7 +10,7 @@
 #       model as Fissure's), and converts each Pair time into ns per directed
 #       bond per step;
 #   (c) prints lammps_ns_per_bond, lammps_pmb_ns_per_bond, both ratios of one
-#       thread and the two-thread speed-up against the targets.
+#       thread and the two-thread speed-up against their targets.
 #
 # Environment overrides:
 #   LMP            LAMMPS executable            (default: lmp)

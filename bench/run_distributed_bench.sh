@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Weak scaling of the distributed explicit step (issue 18; docs/mpi.md): bench_distributed_step
+# Weak scaling of the distributed explicit step (docs/mpi.md): bench_distributed_step
 # on 1 to 4 ranks with the same particles per rank, one OpenMP thread per rank. Ranks beyond
 # the machine's cores are oversubscribed, so their times show the sharing, not the scaling.
 # Then the same bar through the whole run loop, `mpirun fissure run bench/distributed_bar.yaml`

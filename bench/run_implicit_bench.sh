@@ -5,7 +5,7 @@
 # at 300× the explicit estimate. Prints one table: particles, preconditioner, seconds of the first step (it
 # factorizes) and of a later one (the second step, repeated: bench_implicit_step.cpp), µs per particle of a later step and its ratio to the smallest
 # scene's, Newton and Krylov iterations per step, peak memory. Then, per preconditioner, the spread of
-# µs per particle over the sizes (the largest over the smallest: issue 13's target is 3) and the
+# µs per particle over the sizes (the largest over the smallest: the target is 3) and the
 # largest size's peak memory (the target is 8 GB).
 #   bench/run_implicit_bench.sh [BUILD_DIR] [SIZES...]     (default: build 1000 10000 100000)
 set -euo pipefail

@@ -7,7 +7,7 @@
 // no such members). Rows and columns are the degrees of freedom dof[i] ≥ 0 of the real particles
 // (−1: held at zero).
 //
-// With cell_moment (second order, issue 15): each row's energy is the second-order model's
+// With cell_moment (second order): each row's energy is the second-order model's
 // (model/second_order_row.hpp: the bonds less their fitted curvature, plus the cell's share of
 // the strain gradient), its Hessian at the reference state; a quadratic displacement then stores
 // exactly the continuum's energy of the cells.

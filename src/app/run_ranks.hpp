@@ -1,5 +1,5 @@
 #pragma once
-// The ranks one run is spread over (issue 18; docs/mpi.md): which rows this rank owns, the halo
+// The ranks one run is spread over (docs/mpi.md): which rows this rank owns, the halo
 // of their ghosts, and the reductions the run loop and its observers make over the ranks. On one
 // rank every reduction is the value itself and no MPI call is made.
 #include <mpi.h>
@@ -67,7 +67,7 @@ class RunRanks {
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0, size_ = 1, begin_ = 0, end_ = 0;
   std::vector<int> rows_;
-  int first_bond_ = 0;                // this rank's first bond in its families' CSR
+  int first_bond_ = 0;  // this rank's first bond in its families' CSR
   std::unique_ptr<Halo> halo_;
 };
 

@@ -73,7 +73,7 @@ class Simulation {
 Simulation::Simulation(const Config& config, const RunOptions& options)
     : config_(config), options_(options), setup_start_(Clock::now()) {
   integrator_ = make_integrator(config.integrator, config.file);
-  // over several ranks each keeps only its rows' families and its ghosts' (issue 18)
+  // over several ranks each keeps only its rows' families and its ghosts'
   scene_ = build_scene(config, RunRanks::split_over(options.comm));
   model_ = make_model(scene_);
   dynamics_ = std::make_unique<Dynamics>(scene_, *model_);

@@ -20,7 +20,7 @@ class Colliders {
   // Adds the contact force on every particle (of distribute()'s range) to f (3N) and records
   // each collider's reaction.
   void add_forces(const double* y, const double* v, double* f);
-  // Over several ranks (issue 18; docs/mpi.md): add_forces() pushes on the halo's rows only,
+  // Over several ranks (docs/mpi.md): add_forces() pushes on the halo's rows only,
   // and advance() sums the reactions over its ranks (in rank order, the same on every rank;
   // collective). The halo must outlive this.
   void distribute(const Halo& halo);

@@ -20,7 +20,7 @@ class BondBreaking {
   // Removes the bonds that cross the scene's initial cracks.
   BondBreaking(const Scene& scene, Model& model);
   // From now on find() and apply() test and change only the rows this rank owns (halo.begin()
-  // to halo.end()), reading their positions and the ghosts' (issue 18; docs/mpi.md): a pair
+  // to halo.end()), reading their positions and the ghosts' (docs/mpi.md): a pair
   // whose rows live on two ranks breaks on both in the same call, as each rank learns through
   // the halo's ranks whether the other row's criterion was exceeded. Counts (apply(),
   // broken_bonds()) are then this rank's: its rows' broken bonds, a pair shared with another

@@ -17,7 +17,7 @@ class PostStep {
   // release at fixed positions (released()): one or two extra energy evaluations on the steps
   // where bonds yield or break, and one per step before the return map of a plastic scene.
   PostStep(const Scene& scene, Model& model, bool measure_energy = false);
-  // Over several ranks (issue 18; docs/mpi.md): bond breaking tests and changes this rank's rows
+  // Over several ranks (docs/mpi.md): bond breaking tests and changes this rank's rows
   // (BondBreaking::distribute), run() returns whether bonds broke on any rank and books the
   // energy released on all of them, the same on every rank. Throws std::invalid_argument naming
   // the key of an effect that cannot be distributed yet. The halo must outlive this.

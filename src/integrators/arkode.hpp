@@ -25,7 +25,7 @@ class Arkode final : public Integrator {
   }
   bool adaptive() const override { return !settings_.fixed_step; }
   // Over several ranks: u holds this rank's rows in an MPI+X vector, so its norms (adaptive
-  // steps) are global (issue 18; docs/mpi.md); implicit and IMEX methods with the nearest
+  // steps) are global (docs/mpi.md); implicit and IMEX methods with the nearest
   // preconditioner (auto's choice there), block Jacobi over the ranks.
   bool distributable() const override {
     return method_.kind == ArkodeMethod::Kind::explicit_rk ||

@@ -63,7 +63,7 @@ class Dynamics {
   // For checkpoints: the loads' state and the force-evaluation counter, and back.
   NamedArrays saved_state() const;
   void restore_state(const NamedArrays& state);
-  // Over several ranks (issue 18; docs/mpi.md): the model evaluates only this rank's rows
+  // Over several ranks (docs/mpi.md): the model evaluates only this rank's rows
   // (Model::distribute), and an integrator that supports it (Integrator::distributable())
   // advances rows [first_row(), end_row()) only and calls share() on its positions before each
   // acceleration. Throws std::invalid_argument naming the key of a load or model that cannot

@@ -1,5 +1,5 @@
 #pragma once
-// What the second-order model with fictitious particles (issue 15; docs/model.md, deviation 8)
+// What the second-order model with fictitious particles (docs/model.md, deviation 8)
 // reads from a body's tet mesh: its boundary, across which particles are mirrored, and each
 // tet's second moment about its barycentre, the cell term's M_i.
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// Calibrated deviatoric weights (issue 15; a deviation from the paper, like the calibrated
+// Calibrated deviatoric weights (a deviation from the paper, like the calibrated
 // dilatation of dilatation_calibration.hpp), used by the LPS model with
 // material.surface_correction: full (docs/model.md).
 //
@@ -29,7 +29,7 @@ namespace fissure {
 
 // The bounds of ρ_ij: ρ_min > 0 keeps every bond stiff (W_i positive semidefinite); ρ_max = 2
 // makes faces and once-removed edges of a lattice exact, while stiffer bonds shorten the stable
-// step: by 3.6% on a jittered 7³ cube that is all surface, 21% with ρ_max = 4 (issue 15).
+// step: by 3.6% on a jittered 7³ cube that is all surface, 21% with ρ_max = 4.
 constexpr double kMinimumDeviatoricFactor = 0.1;
 constexpr double kMaximumDeviatoricFactor = 2.0;
 // A row is exact when no deviatoric strain's energy is off by more than this relative amount:

@@ -1,5 +1,5 @@
 #pragma once
-// Fictitious particles (issue 15; docs/model.md, deviation 8): mirror images of a body's
+// Fictitious particles (docs/model.md, deviation 8): mirror images of a body's
 // particles across its boundary, which complete the families near its surface so that a
 // particle there samples a strain gradient as one inside does. An image stores no energy of its
 // own; it moves as the quadratic displacement fitted around the particle nearest to it: a fixed

@@ -110,7 +110,7 @@ class Model {
   // From now on forces() and forces_and_energy() evaluate only the rows this rank owns
   // (halo.begin() to halo.end()): they read the positions of those rows and of the halo's
   // ghosts, write those rows of f, and forces_and_energy() returns this rank's share of Π;
-  // whatever a row needs from a ghost's row comes through the halo (issue 18; docs/mpi.md).
+  // whatever a row needs from a ghost's row comes through the halo (docs/mpi.md).
   // The halo must outlive the model. dilatation() and energy_density() evaluate the own rows
   // too (elastic_energy() is then this rank's share), and so does the stiffness
   // (stiffness.hpp); rows_energy() evaluates the rows it is given. break_bond() changes only the

@@ -1,6 +1,6 @@
 #pragma once
 // The weighted least-squares quadratic fit that moves fictitious particles
-// (fictitious_particles.hpp) and that the second-order correction of issue 15 fits over each
+// (fictitious_particles.hpp) and that the second-order correction fits over each
 // family (docs/model.md, deviation 8): differences of a field around a point x_0,
 //   f(x_0 + ξ_j) − f(x_0) ≈ Σ_m q_m φ_m(ξ_j / s),
 //   φ(d) = (d_x, d_y, d_z, ½d_x², ½d_y², ½d_z², d_xd_y, d_xd_z, d_yd_z),

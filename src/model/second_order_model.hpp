@@ -1,5 +1,5 @@
 #pragma once
-// The second-order LPS model with fictitious particles (issue 15; docs/model.md, deviation 8):
+// The second-order LPS model with fictitious particles (docs/model.md, deviation 8):
 // every family near a surface completed by mirror images of the particles across it
 // (fictitious_particles.hpp), both calibrations run over the completed families, and each row's
 // energy that of second_order_row.hpp: the LPS energy of its bonds less their fitted curvature,

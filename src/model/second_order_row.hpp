@@ -1,5 +1,5 @@
 #pragma once
-// One row of the second-order LPS energy (issue 15; docs/model.md, deviation 8): the LPS energy
+// One row of the second-order LPS energy (docs/model.md, deviation 8): the LPS energy
 // of particle i with each bond's curvature removed, plus its cell's share of the strain gradient.
 // With its family complete (fictitious particles beyond the surface) and the weights of both
 // calibrations, every displacement quadratic in x gives the continuum's energy of the cell:

@@ -1,5 +1,5 @@
 #pragma once
-// What all ranks must agree on (issue 18, item 2): an error raised on one rank stops every rank
+// What all ranks must agree on: an error raised on one rank stops every rank
 // with its message, never a hang; and the owned pieces of an array brought together on rank 0.
 #include <mpi.h>
 

@@ -1,6 +1,6 @@
 #pragma once
 // The ghosts of one rank's rows: the family members it does not own, filled from their owners
-// (issue 18, item 1). Per-particle arrays are numbered as the families' rows: locally
+// (docs/mpi.md). Per-particle arrays are numbered as the families' rows: locally
 // (number_locally: the own rows and the ghosts, in the order of their ids) or, for whole
 // families, as the scene.
 #include <mpi.h>
@@ -62,7 +62,7 @@ class Halo {
   mutable std::shared_ptr<const SharedBonds> shared_bonds_;
 };
 
-// The pairs a rank shares with other ranks (issue 18, item 1: the bond star forest): the bonds of
+// The pairs a rank shares with other ranks (the bond star forest): the bonds of
 // its rows whose other end is owned elsewhere, in CSR order, their rows, and the exchange that
 // copies, per bond array in CSR order, each such bond's reverse (families.reverse) from the rank
 // that owns it, into that reverse's entry here (in this rank's CSR, Families).

@@ -4,8 +4,8 @@
 // boundaries[p + 1])), and each rank names the entries it needs from others. A rank keeps the
 // array in the global numbering or in one of its own (`slots`); a fill writes only the needed
 // entries. One PETSc
-// star forest for all entry sizes, each size an MPI datatype of its own (issue 18: particles'
-// ghosts, bonds' reverses).
+// star forest for all entry sizes, each size an MPI datatype of its own (used for particles'
+// ghosts and bonds' reverses).
 #include <mpi.h>
 #include <petscsf.h>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Which rank owns which particles: contiguous ranges of the (Morton-sorted) particle ids, so that
-// a rank's range is its PETSc layout (issue 18, item 1); a rank numbers its own particles and its
+// a rank's range is its PETSc layout; a rank numbers its own particles and its
 // ghosts on their own, in the order of their ids (number_locally).
 #include <vector>
 

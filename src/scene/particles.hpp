@@ -15,7 +15,7 @@ struct Particles {
 };
 
 // Family H_i of every particle (paper §3), as directed bonds: each pair appears in both rows.
-// Over several ranks (issue 18) a rank keeps only the rows it needs (split_families): its own
+// Over several ranks (docs/mpi.md) a rank keeps only the rows it needs (split_families): its own
 // rows whole, and of each ghost's row only its bonds to the own rows (the reverses of the own
 // rows' bonds to it). number_locally then keeps only those rows, numbered on their own in the
 // order of their ids in the whole scene (global_id), so that nothing here grows with the whole

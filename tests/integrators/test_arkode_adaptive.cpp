@@ -52,7 +52,7 @@ class ArkodeAdaptive : public ::testing::TestWithParam<const char*> {};
 // |y − y_ref| stays below 10 (rtol A + atol) at every frame, A the probe's largest displacement
 // from its start, for rtol = 1e-4 and 1e-6.
 // The reference is VERNER_8_5_6 at rtol 1e-12. ARKODE controls the local error per step, so the
-// global error may exceed one tolerance; the factor 10 bounds that growth.
+// global error may exceed one tolerance; the required factor 10 bounds that growth.
 TEST_P(ArkodeAdaptive, ProbeErrorWithinTenTimesTheTolerance) {
   auto v = test::make_vibration();
   const int probe = probe_particle(*v);

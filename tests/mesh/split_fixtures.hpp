@@ -1,6 +1,6 @@
 #pragma once
 // Fixtures and checks for the vertex-splitting tests: a structured cube mesh, cracking faces by
-// a predicate, and the validity checks of issue 4 (distinct corners, positive rest volume,
+// a predicate, and the validity checks of a split mesh (distinct corners, positive rest volume,
 // closed boundary per piece, pieces by shared vertices equal to pieces by uncracked faces).
 #include <gtest/gtest.h>
 
@@ -140,7 +140,7 @@ inline EdgeCounts boundary_edges(const SplitMesh& s) {
   return counts;
 }
 
-// The validity of issue 4 after any split. `manifold`: also require every boundary edge to be
+// The validity of the mesh after any split. `manifold`: also require every boundary edge to be
 // held by exactly two triangles (true for the structured cuts; an unstructured crack surface can
 // pinch an edge between two wedges of one piece, which then holds four).
 inline void expect_valid(const SplitMesh& s, const CrackFaces& cracks, bool manifold) {

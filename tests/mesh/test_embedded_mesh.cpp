@@ -1,4 +1,4 @@
-// The embedded mesh of a scene (paper §5.2, issue 4): tets keep their particles through the
+// The embedded mesh of a scene (paper §5.2): tets keep their particles through the
 // spatial sort, faces crack when their bond breaks, vertices follow the particles.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Hostile mesh input (issue 7): absurd header counts, NaN/inf coordinates, out-of-range indices
+// Hostile mesh input: absurd header counts, NaN/inf coordinates, out-of-range indices
 // and the inputs the fuzz targets (tests/fuzz) found, each rejected with a clear InputError.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Surface and tet output of a run (issue 4): the files docs/output.md names, written per frame
+// Surface and tet output of a run: the files docs/output.md names, written per frame
 // only when asked for, and removed by the next run.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Vertex splitting along crack faces (paper §5.2, issue 4): exact copy counts on structured
+// Vertex splitting along crack faces (paper §5.2): exact copy counts on structured
 // cuts, and the validity of the mesh after any split.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Fictitious particles (model/fictitious_particles.hpp; issue 15): mirror images of a block's
+// Fictitious particles (model/fictitious_particles.hpp): mirror images of a block's
 // particles across its faces, and the stencils that move them.
 #include <gtest/gtest.h>
 

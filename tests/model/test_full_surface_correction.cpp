@@ -1,4 +1,4 @@
-// material.surface_correction: full (issue 15, docs/model.md): the LPS model with the deviatoric
+// material.surface_correction: full (docs/model.md): the LPS model with the deviatoric
 // weights w_ij = ρ_ij ω_ij of model/deviatoric_calibration.hpp in every row, w_ji read where the
 // pair's other row differs. Checked through the model, not the module: forces are the energy's
 // gradient (intact, broken across a plane, with plastic extensions), rigid motions are free and

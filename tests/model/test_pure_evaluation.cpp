@@ -1,4 +1,4 @@
-// The model's evaluations are pure (issue 16, item 4): what one returns does not depend on
+// The model's evaluations are pure: what one returns does not depend on
 // which evaluation ran before it, so a line search's trial points or the ledger's energy samples
 // cannot change what a frame writes. And its optional capabilities are there exactly when the
 // model and the scene have them.

@@ -1,4 +1,4 @@
-// The second-order model with fictitious particles (model/second_order_model.hpp; issue 15), on
+// The second-order model with fictitious particles (model/second_order_model.hpp), on
 // a tet-sampled block whose families its images complete.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// One row of the second-order LPS energy (model/second_order_row.hpp; issue 15): on an interior
+// One row of the second-order LPS energy (model/second_order_row.hpp): on an interior
 // particle of a tet-sampled block, with both calibrations' weights and the fit over its family.
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The frames of a run over several ranks, read by VTK's own XML readers (the ones ParaView uses):
 every .pvtu that particles.pvd lists must open, join its pieces and hold, point for point and bit
-for bit, the one-rank run's .vtu frame (issue 18: "a run on N ranks writes .pvtu frames that
-ParaView opens").
+for bit, the one-rank run's .vtu frame (a run on N ranks writes .pvtu frames that
+ParaView opens).
 
 usage: pvtu_in_vtk.py SPREAD_DIR ONE_RANK_DIR
 """

@@ -1,5 +1,5 @@
-// What the ranks agree on (issue 18, acceptance: "an error raised on one rank stops every rank
-// with the message within the test's timeout"), and the owned pieces gathered on rank 0.
+// What the ranks agree on: an error raised on one rank stops every rank with its message within
+// the test's timeout; and the owned pieces gathered on rank 0.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <petscsys.h>

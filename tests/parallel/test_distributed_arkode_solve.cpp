@@ -1,4 +1,4 @@
-// ARKODE's reduced linear solver over several ranks (arkode_linear_solver.hpp, issue 18): every
+// ARKODE's reduced linear solver over several ranks (arkode_linear_solver.hpp): every
 // solve of an implicit stage meets the tolerance ARKODE asks on the whole stage system
 // (I − γJ)x = b, J = [[0, I], [−M⁻¹K, −cI]], K the exact tangent at ARKODE's predicted stage,
 // with the residual's norm over all ranks. A solver whose CG took its dot products over the

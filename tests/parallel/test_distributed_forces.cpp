@@ -1,7 +1,7 @@
-// Forces over several ranks (issue 18, acceptance: "forces at a perturbed state bitwise equal to
-// one rank"): each rank evaluates its own rows from its rows' and its ghosts' positions alone,
-// and gets the bits one rank gets for them, with broken bonds and with both surface
-// corrections. The reference is the whole scene evaluated on each rank by an undistributed model.
+// Forces over several ranks, at a perturbed state bitwise equal to one rank's: each rank evaluates
+// its own rows from its rows' and its ghosts' positions alone, and gets the bits one rank gets for
+// them, with broken bonds and with both surface corrections. The reference is the whole scene
+// evaluated on each rank by an undistributed model.
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
@@ -69,7 +69,7 @@ TEST(DistributedForces, EqualOneRankBitwise) {
   }
 }
 
-// The return map over several ranks (issue 18: "the plastic extension when it changes"): each
+// The return map over several ranks, which changes the plastic extension: each
 // rank maps its own rows' bonds and takes e^p_ji of the pairs it shares from row j's rank. Two
 // return maps at two states, each followed by the forces at a third: the own rows' forces, yield
 // counts and e^p (the own bonds' and the shared pairs' reverses) are one rank's bits.

@@ -1,4 +1,4 @@
-// Fracture over several ranks (issue 18, item 2): a slab with a pre-crack across the ranks'
+// Fracture over several ranks: a slab with a pre-crack across the ranks'
 // cuts, stretched in steps; at every step each rank's rows lose exactly the bonds one rank's
 // do, their damage and their forces are bitwise one rank's, and a pair whose rows live on two
 // ranks breaks on both in the same step, also where only the other row's criterion is exceeded

@@ -1,6 +1,6 @@
-// The explicit integrators over several ranks (issue 18, acceptance: "a velocity Verlet fracture
-// run with a pre-crack crossing rank boundaries with positions, damage and broken bonds bitwise
-// equal"): a slab with a pre-crack across the ranks' cuts, pulled apart at both ends under
+// The explicit integrators over several ranks (a velocity Verlet fracture run with a pre-crack
+// crossing rank boundaries gives positions, damage and broken bonds bitwise equal to one rank's):
+// a slab with a pre-crack across the ranks' cuts, pulled apart at both ends under
 // gravity, stepped with the fracture search after every step; at every step each rank's rows
 // hold one rank's bits. The step loop is the run loop's (integrator step, then bond breaking);
 // the whole run loop over ranks is DistributedRunLoop's (test_distributed_run_loop.cpp).

@@ -1,7 +1,7 @@
-// `fissure run` over several ranks (issue 18, acceptance: "a velocity Verlet fracture run with a
-// pre-crack crossing rank boundaries with positions, damage and broken bonds bitwise equal at
-// every frame"; "a checkpoint written on 2 ranks resumes on 1 and on 3 and matches an
-// uninterrupted run"; "summary.json records ranks; a run on N ranks writes .pvtu frames"). The
+// `fissure run` over several ranks: a velocity Verlet fracture run with a pre-crack crossing rank
+// boundaries gives positions, damage and broken bonds bitwise equal at every frame; a checkpoint
+// written on 2 ranks resumes on 1 and on 3 and matches an uninterrupted run; summary.json records
+// ranks; a run on N ranks writes .pvtu frames. The
 // whole run loop (run_simulation) runs on the ranks of the test and on sub-communicators of them,
 // against the same scene run on one rank.
 #include <gtest/gtest.h>
@@ -454,15 +454,14 @@ TEST(DistributedRunLoop, ArkodeAdaptiveWithinItsTolerance) {
   }
 }
 
-// petsc_newton over the ranks (issue 18, acceptance: "petsc_newton on N ranks within 1e-9
-// relative of one rank"): the pre-cracked slab pulled apart by Newmark at 1.75× the explicit
-// limit, Newton to -snes_rtol 1e-12, checkpoints written, with the same preconditioner on both
-// sides: the majoriser, factored by CHOLMOD on one rank and by MUMPS's parallel Cholesky on
-// several (the same matrix: the same Newton iterations), and GAMG (set up over the ranks: other
-// aggregates, other Krylov iterates). Every frame's positions within 1e-9 of the largest
-// displacement of one rank's, the same broken bonds, and bonds broken during the run (10 steps).
-// Measured on 2, 3 and 4 ranks: 4e-14 to 2e-13 of it with the majoriser, 1e-11 to 3e-11 with
-// GAMG (over 20 steps: 1e-13 to 2e-11, 4e-11 to 9e-11).
+// petsc_newton over the ranks, within 1e-9 relative of one rank: the pre-cracked slab pulled apart
+// by Newmark at 1.75× the explicit limit, Newton to -snes_rtol 1e-12, checkpoints written, with the
+// same preconditioner on both sides: the majoriser, factored by CHOLMOD on one rank and by MUMPS's
+// parallel Cholesky on several (the same matrix: the same Newton iterations), and GAMG (set up over
+// the ranks: other aggregates, other Krylov iterates). Every frame's positions within 1e-9 of the
+// largest displacement of one rank's, the same broken bonds, and bonds broken during the run (10
+// steps). Measured on 2, 3 and 4 ranks: 4e-14 to 2e-13 of it with the majoriser, 1e-11 to 3e-11
+// with GAMG (over 20 steps: 1e-13 to 2e-11, 4e-11 to 9e-11).
 TEST(DistributedRunLoop, PetscNewtonWithinOneBillionthOfOneRank) {
   if (test::ranks() == 1) GTEST_SKIP() << "one rank against itself";
   const std::vector<std::string> preconditioners = {"majoriser", "gamg"};

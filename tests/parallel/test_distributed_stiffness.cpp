@@ -1,4 +1,4 @@
-// The stiffness the implicit integrators need, over several ranks (issue 18, scope 3): the
+// The stiffness the implicit integrators need, over several ranks: the
 // matrix-free tangent product, the majoriser's rows and the nearest members' rows, evaluated on
 // each rank's own rows from its rows' and its ghosts' values alone, equal one rank's bit for
 // bit, intact and with a crack broken as fracture breaks it over ranks: each rank breaks its own

@@ -1,4 +1,4 @@
-// The halo (issue 18, item 1): each rank's ghosts are exactly the family members of its rows
+// The halo: each rank's ghosts are exactly the family members of its rows
 // that it does not own, and a fill gives each of them its owner's values and touches nothing
 // else.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Ownership (issue 18, item 1): contiguous ranges of particle ids balanced by bonds.
+// Ownership: contiguous ranges of particle ids balanced by bonds.
 #include <gtest/gtest.h>
 
 #include <algorithm>

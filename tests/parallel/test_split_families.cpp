@@ -1,4 +1,4 @@
-// Families split over ranks (issue 18: memory per rank that scales): each rank keeps its own
+// Families split over ranks (so that memory per rank scales): each rank keeps its own
 // rows of the whole families and, of its ghosts' rows, their bonds to its own rows, and only
 // those particles, numbered on their own in the order of their ids in the whole scene and the whole
 // families' bond numbering at hand for checkpoints and the bond star forest; a model on them gets

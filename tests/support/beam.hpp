@@ -122,7 +122,7 @@ inline double timoshenko_first_frequency() {
 
 // The factor c of the least-squares fit w ≈ a + b x + c theory(x) to the samples (x, w) with x
 // in [from, to]: the deflection over the theory's once a rigid offset and rotation, which a
-// compliant clamp adds, are taken out (issue 15).
+// compliant clamp adds, are taken out.
 template <class Theory>
 double deflection_over_theory_beyond_clamp(const std::vector<double>& x,
                                            const std::vector<double>& w, Theory theory, double from,

@@ -111,7 +111,7 @@ TEST(CantileverConvergence, FullSurfaceCorrectionIsSoftAndConverges) {
 }
 
 // The second-order model (surface_correction: fictitious, docs/model.md deviation 8) on the beam
-// alone with its face x = 0 clamped: issue 15's target, within 1% of Timoshenko at λ = 0.025
+// alone with its face x = 0 clamped: the target, within 1% of Timoshenko at λ = 0.025
 // with the error falling at each refinement. Measured in bench_fictitious_particles (the same
 // model, linearised): 0.9859, 0.9898, 0.9938. 3D elasticity with the face held gives 0.994 at
 // this clamp (bench_fem_cantilever), the limit the ratio should approach: a model that kept the

@@ -150,7 +150,7 @@ TEST(CantileverFrequency, FirstBendingModeMatchesBeamTheory) {
 }
 
 // The same swing with the second-order model (surface_correction: fictitious, its face x = 0
-// clamped; docs/model.md deviation 8): issue 15's target, within 1% of Timoshenko. Measured in
+// clamped; docs/model.md deviation 8): the target, within 1% of Timoshenko. Measured in
 // bench_fictitious_particles (the same model, linearised, by its eigenvalue): 1.0035 at this λ.
 // Timoshenko's first-order estimate is itself good to a fraction of its 0.6% correction; the
 // `dilatation` model's +1.0% (above) or a model 2% too stiff or soft (±1% in ω) fails.

@@ -119,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(Figure9, PoissonRatio, kFigure9, material_name);
 
 // With the deviatoric calibration (surface_correction: full, docs/model.md deviation 8) every
 // homogeneous strain is exact on the particles that can be, the surface stiffening is gone, and
-// ν is within issue 15's 0.02 of theory (measured −0.008, −0.010, −0.005: what is left is the
+// ν is within the required 0.02 of theory (measured −0.008, −0.010, −0.005: what is left is the
 // grips' restraint and the inexact edge rows). A calibration that did nothing gives the table
 // above (0.043 low for the first material) and fails.
 class PoissonRatioFull : public ::testing::TestWithParam<Material> {};

@@ -20,7 +20,7 @@ TEST(WaveSpeed, LongitudinalPulseTravelsAtBarSpeed) {
 }
 
 // With the deviatoric calibration (surface_correction: full, docs/model.md deviation 8) the
-// surface stiffening is gone: within issue 15's 1.5% of √(E/ρ) (measured 0.991: the bar's four
+// surface stiffening is gone: within the required 1.5% of √(E/ρ) (measured 0.991: the bar's four
 // edges keep inexact rows). The `dilatation` model's 1.040 fails it.
 TEST(WaveSpeed, FullSurfaceCorrectionTravelsAtBarSpeed) {
   EXPECT_NEAR(wave_speed_ratio(", surface_correction: full"), 1.0, 0.015);

@@ -9,7 +9,7 @@ namespace fissure {
 namespace {
 
 // surface_correction: fictitious (docs/model.md deviation 8), whose images make every
-// homogeneous strain exact on every particle, edges included: within issue 15's 1.5% of √(E/ρ)
+// homogeneous strain exact on every particle, edges included: within the required 1.5% of √(E/ρ)
 // (measured 1.0084). The pushed end is a held block moving at constant velocity, as in
 // tests/integrators/test_wave_speed.cpp. The `dilatation` model's 1.040 fails.
 TEST(WaveSpeed, FictitiousParticlesTravelAtBarSpeed) {
