@@ -101,10 +101,11 @@ void Arkode::check(const Dynamics& dynamics) const {
                      fmt::format("'{}' is implicit, and material.model '{}' provides no "
                                  "stiffness; use material.model: lps or an explicit method",
                                  method_.name, dynamics.model().name()));
-  // ARKODE's linear solver keeps the factor of the first step, whose size ARKODE picks near
-  // 1e-13 s, while the step grows by orders of magnitude: with one-hop matrices CG's iterations
-  // stay cheap; without them every iteration rebuilds each row's Hessian, and a free vibrating
-  // block of 250 particles did not get past 2 µs in minutes (docs/integrators.md).
+  // Without one-hop matrices ARKODE's linear solver is untested, and slow or stalled where it was
+  // tried (docs/integrators.md): each CG iteration rebuilds every row's Hessian; with
+  // reuse_factor: true the first step's factor (ARKODE's first step is near 1e-13 s) is kept
+  // while the step grows by orders of magnitude, and a free vibrating 250-particle block did not
+  // get past 2 µs in minutes; refactorized at each γ change, a held one took 0.13 s per step.
   if (method_.kind != ArkodeMethod::Kind::explicit_rk &&
       !dynamics.model().stiffness()->one_hop_matrices())
     throw InputError(file_, "integrator.method",
