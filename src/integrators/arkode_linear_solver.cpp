@@ -35,8 +35,8 @@ ReducedNewtonSystem::ReducedNewtonSystem(Dynamics& dynamics, void* arkode_memory
   const Stiffness& stiffness = *dynamics.model().stiffness();
   if (nearest && !stiffness.one_hop_matrices())
     throw RunError(
-        "arkode: this model has no nearest members' stiffness (surface_correction: fictitious); "
-        "use integrator.preconditioner: tangent");
+        "arkode: this model has no nearest members' stiffness (surface_correction: fictitious), "
+        "which Arkode::check refuses for implicit methods");
   if (nearest) {
     nearest_ = nearest_bonds(families, kNearestMembers,
                              [&dynamics](double* reach) { dynamics.share(reach, 1); });

@@ -63,9 +63,6 @@ TEST(Stiffness, ExactTangentMatchesForceDifferencesWithFrozenPlasticExtension) {
   expect_tangent_matches_force_differences(*model, scene.families, deformed(scene.particles, 0.03));
 }
 
-// The eigenvalues of a dense symmetric matrix, without its eigenvectors.
-Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& A) { return test::symmetric_eigenvalues(A); }
-
 // min eig(K^bw) ≥ 0 and min eig(K^bw − K) ≥ 0, to round-off (1e-12 of the largest eigenvalue),
 // in stretched and compressed states; in compression the exact tangent itself is indefinite,
 // which is why Newton uses the majoriser.
@@ -80,8 +77,9 @@ TEST(Stiffness, MajoriserIsPositiveSemidefiniteAndDominatesTheTangent) {
     const Eigen::MatrixXd A = dense(bw), T = dense(K);
     EXPECT_LT((A - A.transpose()).cwiseAbs().maxCoeff(), 1e-12 * A.cwiseAbs().maxCoeff());
     EXPECT_LT((T - T.transpose()).cwiseAbs().maxCoeff(), 1e-9 * T.cwiseAbs().maxCoeff());
-    const Eigen::VectorXd eig_bw = eigenvalues(A), eig_gap = eigenvalues(A - T),
-                          eig_K = eigenvalues(T);
+    const Eigen::VectorXd eig_bw = test::symmetric_eigenvalues(A),
+                          eig_gap = test::symmetric_eigenvalues(A - T),
+                          eig_K = test::symmetric_eigenvalues(T);
     const double top = eig_bw.maxCoeff();
     std::printf(
         "strain %+.2f: min eig K^bw %.2e, min eig (K^bw - K) %.2e, min eig K %.2e "
@@ -93,7 +91,8 @@ TEST(Stiffness, MajoriserIsPositiveSemidefiniteAndDominatesTheTangent) {
     SparseSymmetric projected = two_hop_pattern(scene.families);
     model->stiffness()->assemble_tangent(y.data(), projected, true);
     const Eigen::MatrixXd P = dense(projected);
-    const double p_min = eigenvalues(P).minCoeff(), p_gap = eigenvalues(P - T).minCoeff();
+    const double p_min = test::symmetric_eigenvalues(P).minCoeff(),
+                 p_gap = test::symmetric_eigenvalues(P - T).minCoeff();
     std::printf("strain %+.2f: min eig K+ %.2e, min eig (K+ - K) %.2e\n", strain, p_min / top,
                 p_gap / top);
     EXPECT_GT(p_min, -1e-12 * top);
