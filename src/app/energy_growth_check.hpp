@@ -1,8 +1,8 @@
 #pragma once
 // Stops the run (status unstable) when energy that no load put in exceeds
-// integrator.energy_growth_limit of the energy scale for 10 steps in a row: K + losses −
-// (E(0) + work) bounds the ledger's balance from below because Π ≥ 0, so it needs no energy
-// evaluation. A check of the run loop (app/observer.hpp), after the ledger's booking.
+// integrator.energy_growth_limit of the energy put in (|E(0)| + Σ |work|) for 10 steps in a row: K
+// + losses − (E(0) + work) bounds the ledger's balance from below because Π ≥ 0, so it needs no
+// energy evaluation. A check of the run loop (app/observer.hpp), after the ledger's booking.
 #include "app/energy_ledger.hpp"
 
 namespace fissure {

@@ -41,11 +41,12 @@ void EnergyLedger::sample(const RunParts& run) {
   elastic_ = ranks.distributed()
                  ? ranks.sum(run.model.rows_energy(run.state.position.data(), ranks.rows()))
                  : run.model.elastic_energy(run.state.position.data());
+  stored_ = ranks.sum(run.dynamics.stored_energy(run.state.position.data()));
   if (!sampled_) {
-    initial_ = kinetic_ + elastic_;
+    initial_ = kinetic_ + elastic_ + stored_;
     sampled_ = true;
   }
-  scale_ = std::max({scale_, kinetic_ + std::abs(elastic_), absolute_work()});
+  scale_ = std::max({scale_, kinetic_ + std::abs(elastic_) + stored_, absolute_work()});
 }
 
 double EnergyLedger::sum(Booking booking) const {
@@ -66,7 +67,7 @@ double EnergyLedger::absolute_work(double from) const {
 }
 
 double EnergyLedger::balance() const {
-  return kinetic_ + elastic_ + losses() - (initial_ + work());
+  return kinetic_ + elastic_ + stored_ + losses() - (initial_ + work());
 }
 
 double EnergyLedger::balance_error() const { return scale_ > 0 ? balance() / scale_ : 0.0; }
@@ -75,6 +76,7 @@ std::vector<std::pair<std::string, double>> EnergyLedger::entries() const {
   std::vector<std::pair<std::string, double>> all;
   for (const Entry& e : entries_) all.emplace_back(e.name, e.value);
   all.emplace_back("balance_error", balance_error());
+  all.emplace_back("stored_energy", stored_);
   return all;
 }
 
@@ -97,6 +99,7 @@ void EnergyLedger::summarize(RunSummary& summary) const {
 NamedArrays EnergyLedger::saved_state() const {
   NamedArrays state = {{"ledger.kinetic", {kinetic_}},
                        {"ledger.elastic", {elastic_}},
+                       {"ledger.stored", {stored_}},
                        {"ledger.initial", {initial_}},
                        {"ledger.scale", {scale_}}};
   for (const Entry& e : entries_) state.push_back({"ledger." + e.name, {e.value}});
@@ -106,6 +109,8 @@ NamedArrays EnergyLedger::saved_state() const {
 void EnergyLedger::resume(const RunParts&, const NamedArrays& state) {
   kinetic_ = saved_number(state, "ledger.kinetic");
   elastic_ = saved_number(state, "ledger.elastic");
+  const std::vector<double>* stored = find_array(state, "ledger.stored");
+  stored_ = stored ? stored->at(0) : 0.0;  // a checkpoint from before the colliders' energy
   initial_ = saved_number(state, "ledger.initial");
   scale_ = saved_number(state, "ledger.scale");
   for (Entry& e : entries_) e.value = saved_number(state, "ledger." + e.name);

@@ -1,24 +1,24 @@
 #pragma once
 // A rigid collider's shape: where it starts, and the penalty and friction forces it exerts on the
 // particles it touches. A shape is one file that registers itself (contact/collider_registry.hpp)
-// and gives its penetration depth as a plain inline function, so the force loop over the
-// particles (ShapeContact) is compiled per shape without a virtual call per particle.
+// and gives its penetration depth as a plain inline function, so the loops over the particles
+// (ShapeContact) are compiled per shape without a virtual call per particle.
+//
+// A particle at penetration depth p > 0 (its contact reach minus its distance from the shape)
+// stores the penalty energy ½ k p² and feels its force k p n along the outward normal n
+// (docs/integrators.md, "Contact"). Explicit integrators take the force with regularised Coulomb
+// friction, −μ k p v_t / max(|v_t|, v_stick); implicit ones take the energy into the step's
+// potential at each iterate, with its gradient and the positive-semidefinite part of its Hessian,
+// k n nᵀ (exact for a plane and a box's faces; a sphere's or an edge's curvature term is negative
+// and is left out, IPC's per-contact projection).
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
+
+#include "contact/contact_law.hpp"
 
 namespace fissure {
-
-using Point = std::array<double, 3>;
-
-// What the particles bring to a contact (contact/contact_particles.hpp), and Coulomb's μ; the
-// particles [begin, end) it acts on (a rank's rows, or all).
-struct ContactLaw {
-  int begin, end;
-  const double* radius;     // ½ V^(1/3) per particle
-  const double* stiffness;  // penalty stiffness per particle [N/m]
-  double friction;
-};
 
 class ColliderShape {
  public:
@@ -26,33 +26,53 @@ class ColliderShape {
   // Where its reference point starts: a sphere's centre, a plane's point, 0 for a box (whose
   // position is its offset from where the config put it).
   virtual Point origin() const = 0;
-  // Adds the contact force on the law's particles (positions y, velocities v, 3N) to f, with the
-  // collider's reference point at `position` moving at `velocity`; returns the force the
-  // particles exert on it (the reaction).
-  virtual Point add_forces(const ContactLaw& law, const Point& position, const Point& velocity,
-                           const double* y, const double* v, double* f) const = 0;
+  // Depth of one particle at y of contact radius r with the reference point at `position`, and
+  // the outward normal n (not for loops over the particles).
+  virtual double depth(const Point& position, const double* y, double radius, double* n) const = 0;
+  // Explicit: adds the penalty and friction forces on the law's particles (positions y,
+  // velocities v, 3N) to f and the friction forces alone to `friction` (3N), with the collider's
+  // reference point at `position` moving at `velocity`.
+  virtual ContactSums add_forces(const ContactLaw& law, const Point& position,
+                                 const Point& velocity, const double* y, const double* v, double* f,
+                                 double* friction) const = 0;
+  // Σ ½ k p² over the law's particles at y [J].
+  virtual double energy(const ContactLaw& law, const Point& position, const double* y) const = 0;
+  // Implicit: the penalty energy at z; adds its gradient −k p n to `gradient` (3N, or null) and
+  // k n nᵀ to each particle's 3×3 block in `blocks` (9N, or null); the normal forces' sum into
+  // `sums`.
+  virtual double penalty(const ContactLaw& law, const Point& position, const double* z,
+                         double* gradient, double* blocks, ContactSums& sums) const = 0;
+  // The contacts at y, for the step's lagged friction.
+  virtual void lag(const ContactLaw& law, const Point& position, const double* y,
+                   std::vector<LaggedContact>& out) const = 0;
+  // The largest fraction α ≤ 1 of the update dz from z that keeps every particle's depth within
+  // its bound: its contact reach (its centre never crosses the shape's surface), or its depth at
+  // z where that is deeper already.
+  virtual double max_step(const ContactLaw& law, const Point& position, const double* z,
+                          const double* dz) const = 0;
 };
 
 // Relative tangential speed below which friction is scaled down linearly (regularised Coulomb),
-// so that a resting contact does not chatter.
+// so that a resting contact does not chatter: ε_v of the friction potential.
 constexpr double kStickSpeed = 1e-3;
 
-// The penalty force k p n and friction −μ k p v_t/max(|v_t|, v_stick) of every particle at
-// penetration depth p > 0 along the outward normal n that Shape::penetration(x, y, r, n)
-// returns for its reference point x.
 template <class Shape>
 class ShapeContact : public ColliderShape {
  public:
-  Point add_forces(const ContactLaw& law, const Point& position, const Point& velocity,
-                   const double* y, const double* v, double* f) const override {
-    const Shape& shape = static_cast<const Shape&>(*this);
-    double rx = 0, ry = 0, rz = 0;
-#pragma omp parallel for reduction(+ : rx, ry, rz) schedule(static)
+  double depth(const Point& position, const double* y, double radius, double* n) const override {
+    return self().penetration(position.data(), y, radius, n);
+  }
+
+  ContactSums add_forces(const ContactLaw& law, const Point& position, const Point& velocity,
+                         const double* y, const double* v, double* f,
+                         double* friction) const override {
+    double nx = 0, ny = 0, nz = 0, tx = 0, ty = 0, tz = 0;
+#pragma omp parallel for reduction(+ : nx, ny, nz, tx, ty, tz) schedule(static)
     for (int i = law.begin; i < law.end; ++i) {
       double normal[3];
-      const double depth = shape.penetration(position.data(), y + 3 * i, law.radius[i], normal);
-      if (depth <= 0) continue;
-      const double pressing = law.stiffness[i] * depth;
+      const double p = self().penetration(position.data(), y + 3 * i, law.reach[i], normal);
+      if (p <= 0) continue;
+      const double pressing = law.stiffness[i] * p;
       double relative[3], along = 0;
       for (int k = 0; k < 3; ++k) {
         relative[k] = v[3 * i + k] - velocity[k];
@@ -64,17 +84,88 @@ class ShapeContact : public ColliderShape {
         speed2 += tangential[k] * tangential[k];
       }
       const double drag = law.friction * pressing / std::max(std::sqrt(speed2), kStickSpeed);
-      double force[3];
+      double push[3], rub[3];
       for (int k = 0; k < 3; ++k) {
-        force[k] = pressing * normal[k] - drag * tangential[k];
-        f[3 * i + k] += force[k];
+        push[k] = pressing * normal[k];
+        rub[k] = -drag * tangential[k];
+        f[3 * i + k] += push[k] + rub[k];
+        friction[3 * i + k] += rub[k];
       }
-      rx -= force[0];
-      ry -= force[1];
-      rz -= force[2];
+      nx += push[0], ny += push[1], nz += push[2];
+      tx += rub[0], ty += rub[1], tz += rub[2];
     }
-    return {rx, ry, rz};
+    return {{nx, ny, nz}, {tx, ty, tz}};
   }
+
+  double energy(const ContactLaw& law, const Point& position, const double* y) const override {
+    double sum = 0;
+#pragma omp parallel for reduction(+ : sum) schedule(static)
+    for (int i = law.begin; i < law.end; ++i) {
+      double normal[3];
+      const double p = self().penetration(position.data(), y + 3 * i, law.reach[i], normal);
+      if (p > 0) sum += 0.5 * law.stiffness[i] * p * p;
+    }
+    return sum;
+  }
+
+  double penalty(const ContactLaw& law, const Point& position, const double* z, double* gradient,
+                 double* blocks, ContactSums& sums) const override {
+    double sum = 0, nx = 0, ny = 0, nz = 0;
+#pragma omp parallel for reduction(+ : sum, nx, ny, nz) schedule(static)
+    for (int i = law.begin; i < law.end; ++i) {
+      double n[3];
+      const double p = self().penetration(position.data(), z + 3 * i, law.reach[i], n);
+      if (p <= 0) continue;
+      const double k = law.stiffness[i];
+      sum += 0.5 * k * p * p;  // ½ k p²
+      nx += k * p * n[0], ny += k * p * n[1], nz += k * p * n[2];
+      if (gradient)
+        for (int a = 0; a < 3; ++a) gradient[3 * i + a] -= k * p * n[a];  // ∂p/∂z = −n
+      if (blocks)
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) blocks[9 * i + 3 * a + b] += k * n[a] * n[b];
+    }
+    sums.normal[0] += nx, sums.normal[1] += ny, sums.normal[2] += nz;
+    return sum;
+  }
+
+  void lag(const ContactLaw& law, const Point& position, const double* y,
+           std::vector<LaggedContact>& out) const override {
+    for (int i = law.begin; i < law.end; ++i) {
+      LaggedContact c{i, 0, {0, 0, 0}, {y[3 * i], y[3 * i + 1], y[3 * i + 2]}};
+      const double p = self().penetration(position.data(), y + 3 * i, law.reach[i], c.normal);
+      if (p <= 0 || law.friction <= 0) continue;
+      c.limit = law.friction * law.stiffness[i] * p;  // μλ, λ = k p
+      out.push_back(c);
+    }
+  }
+
+  double max_step(const ContactLaw& law, const Point& position, const double* z,
+                  const double* dz) const override {
+    double alpha = 1;
+#pragma omp parallel for reduction(min : alpha) schedule(static)
+    for (int i = law.begin; i < law.end; ++i) {
+      double n[3], w[3];
+      for (int k = 0; k < 3; ++k) w[k] = z[3 * i + k] + dz[3 * i + k];
+      const double* x = position.data();
+      if (self().penetration(x, w, law.reach[i], n) <= 0) continue;
+      const double bound =
+          std::max(law.reach[i], self().penetration(x, z + 3 * i, law.reach[i], n));
+      if (self().penetration(x, w, law.reach[i], n) <= bound) continue;
+      // the depth along the update is continuous: bisect for where it reaches the bound
+      double lo = 0, hi = 1;
+      for (int it = 0; it < 40; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        for (int k = 0; k < 3; ++k) w[k] = z[3 * i + k] + mid * dz[3 * i + k];
+        (self().penetration(x, w, law.reach[i], n) <= bound ? lo : hi) = mid;
+      }
+      alpha = std::min(alpha, lo);
+    }
+    return alpha;
+  }
+
+ private:
+  const Shape& self() const { return static_cast<const Shape&>(*this); }
 };
 
 // Depth r − distance of a particle of radius r whose offset from the nearest point of a convex

@@ -2,10 +2,16 @@
 // Rigid colliders (spheres, planes, boxes or any registered shape, contact/collider_registry.hpp)
 // pushing on the particles with a penalty force and regularised Coulomb friction. A dynamic
 // sphere moves under the particles' reaction and gravity.
+//
+// A body may start touching a collider as sampled (a box with its bottom face on a plane): each
+// particle's contact reach against each collider is its radius ½ V^(1/3) less its overlap at
+// load, so that it starts at rest in contact and presses only when it moves further in. A
+// particle whose centre starts inside a collider is refused at load (docs/config.md, colliders).
 #include <array>
 #include <memory>
 #include <vector>
 
+#include "contact/contact_law.hpp"
 #include "scene/scene.hpp"
 
 namespace fissure {
@@ -15,18 +21,39 @@ class Halo;           // parallel/halo.hpp
 
 class Colliders {
  public:
+  // Throws InputError naming the collider and the body when a particle's centre starts inside a
+  // collider.
   explicit Colliders(const Scene& scene);
   ~Colliders();
   // Adds the contact force on every particle (of distribute()'s range) to f (3N) and records
-  // each collider's reaction.
+  // each collider's reaction and the friction forces.
   void add_forces(const double* y, const double* v, double* f);
+  // The penalty energy Σ ½ k p² stored in the contacts at y, over distribute()'s range [J].
+  double energy(const double* y) const;
+
+  // Implicit steps: contact as a potential of the positions z at the end of a stage of length
+  // s = c h from y (docs/integrators.md, "Contact"). begin_stage() places the colliders where
+  // they are at the stage's end and lags the friction of the contacts at y; potential() returns
+  // the penalty and friction energy at z and adds its gradient (3N, or null) and its
+  // positive-semidefinite Hessian blocks (9N, or null), recording the forces as add_forces does.
+  void begin_stage(const double* y, double s);
+  double potential(const double* z, double* gradient, double* blocks);
+  // The largest fraction α ≤ 1 of the update dz from z that keeps each particle within its
+  // bound (ShapeContact::max_step), over distribute()'s range.
+  double max_step(const double* z, const double* dz) const;
+
   // Over several ranks (docs/mpi.md): add_forces() pushes on the halo's rows only,
   // and advance() sums the reactions over its ranks (in rank order, the same on every rank;
   // collective). The halo must outlive this.
   void distribute(const Halo& halo);
   // Moves the colliders by one step h: kinematic ones at their velocity, dynamic spheres by
-  // semi-implicit Euler under the reaction of the last add_forces and gravity.
+  // semi-implicit Euler under the reaction of the last evaluation and gravity.
   void advance(double h);
+  // The work the colliders did on the particles over the last step h (after advance()): the
+  // normal forces times the colliders' own displacement, plus the friction forces times the
+  // particles' displacement from `before` to `after` (3N), this rank's rows [J]. The normal
+  // forces' work relative to the colliders is the change of energy().
+  double work(const double* before, const double* after, double h) const;
   // Momentum of the dynamic colliders, for balances.
   std::array<double, 3> momentum() const;
   // For checkpoints: position and velocity of every collider (6 numbers each), and back.
@@ -39,16 +66,21 @@ class Colliders {
     std::unique_ptr<ColliderShape> shape;
     std::array<double, 3> position;  // sphere centre, plane point, or box offset from its min
     std::array<double, 3> velocity;
-    std::array<double, 3> reaction;  // force the particles exert on it, last add_forces
+    ContactSums sums;                   // the forces on the particles at the last evaluation
+    std::vector<double> reach;          // contact reach per particle
+    std::array<double, 3> stage;        // implicit: position at the stage's end
+    std::vector<LaggedContact> lagged;  // implicit: the contacts at the stage's start
   };
+  ContactLaw law(const State& c) const;
 
   std::vector<State> state_;
-  std::vector<double> radius_;     // contact radius per particle: ½ V^(1/3)
-  std::vector<double> stiffness_;  // penalty stiffness per particle [N/m]
+  std::vector<double> stiffness_;       // penalty stiffness per particle [N/m]
+  std::vector<double> friction_force_;  // 3N, at the last evaluation
   double friction_;
   int begin_ = 0, end_ = 0;  // the particles add_forces() pushes on
   const Halo* halo_ = nullptr;
   std::array<double, 3> gravity_;
+  double stage_length_ = 0;  // implicit: s of the stage
 };
 
 }  // namespace fissure

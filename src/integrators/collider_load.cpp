@@ -1,24 +1,20 @@
 #include "integrators/collider_load.hpp"
 
 #include "core/error.hpp"
-#include "integrators/force_sums.hpp"
 #include "integrators/load_registry.hpp"
 
 namespace fissure {
 
-ColliderLoad::ColliderLoad(const Scene& scene)
-    : colliders_(scene), force_(3 * scene.particles.mass.size()) {}
+ColliderLoad::ColliderLoad(const Scene& scene) : colliders_(scene) {}
 
 void ColliderLoad::add(double, const double* y, const double* v, double* f) {
-  std::fill(force_.begin(), force_.end(), 0.0);
-  colliders_.add_forces(y, v, force_.data());
-  add_to(force_, f);
+  colliders_.add_forces(y, v, f);
 }
 
 void ColliderLoad::distribute(const Halo& halo) { colliders_.distribute(halo); }
 
 double ColliderLoad::booked(const BookedStep& step) const {
-  return work_of(force_, step.before, step.after);
+  return colliders_.work(step.before, step.after, step.h);
 }
 
 NamedArrays ColliderLoad::saved_state() const {

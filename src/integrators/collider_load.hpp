@@ -1,6 +1,8 @@
 #pragma once
 // The rigid colliders (contact/colliders.hpp) as a load: their penalty and friction forces, the
-// work of those forces over a step, Σ F·Δy, and the colliders' motion at the end of each step.
+// penalty energy they store, the work the moving colliders and friction do over a step, and the
+// colliders' motion at the end of each step. Implicit integrators take them as a potential of
+// the positions (LoadPotential).
 #include <memory>
 
 #include "contact/colliders.hpp"
@@ -8,13 +10,23 @@
 
 namespace fissure {
 
-class ColliderLoad : public Load {
+class ColliderLoad : public Load, public LoadPotential {
  public:
   explicit ColliderLoad(const Scene& scene);
   void add(double t, const double* y, const double* v, double* f) override;
+  // The colliders' work (Colliders::work): moving colliders' normal forces and friction.
   double booked(const BookedStep& step) const override;
+  double stored_energy(const double* y) const override { return colliders_.energy(y); }
   void end_step(double h) override { colliders_.advance(h); }
   void distribute(const Halo& halo) override;
+  LoadPotential* potential() override { return this; }
+  void begin_stage(const double* y, double s) override { colliders_.begin_stage(y, s); }
+  double evaluate(const double* z, double* gradient, double* blocks) override {
+    return colliders_.potential(z, gradient, blocks);
+  }
+  double max_step(const double* z, const double* dz) const override {
+    return colliders_.max_step(z, dz);
+  }
   // "dynamics.colliders": position and velocity of every collider.
   NamedArrays saved_state() const override;
   void restore_state(const NamedArrays& state) override;
@@ -22,7 +34,6 @@ class ColliderLoad : public Load {
 
  private:
   Colliders colliders_;
-  std::vector<double> force_;  // 3N, at the last add()
 };
 
 }  // namespace fissure

@@ -12,6 +12,7 @@ class DampingLoad : public Load {
   DampingLoad(double c, std::size_t count) : c_(c), count_(count) {}
   Form form() const override { return Form::acceleration; }
   bool stiff() const override { return true; }
+  bool scheme_coefficient() const override { return true; }
   void add(double, const double*, const double* v, double* a) override {
     const int n = static_cast<int>(count_);
 #pragma omp parallel for schedule(static)

@@ -106,13 +106,36 @@ void Dynamics::explicit_acceleration(double t, const double* y, const double* v,
   constraints_.hold(t, a, Constraints::Part::explicit_);
 }
 
-void Dynamics::external_forces(double t, const double* y, const double* v, double* f) {
+std::vector<LoadPotential*> Dynamics::potentials() const {
+  std::vector<LoadPotential*> out;
+  for (const auto& load : loads_)
+    if (LoadPotential* p = load->potential()) out.push_back(p);
+  return out;
+}
+
+double Dynamics::stored_energy(const double* y) const {
+  double sum = 0;
+  for (const auto& load : loads_) sum += load->stored_energy(y);
+  return sum;
+}
+
+std::string Dynamics::implicit_refusal() const {
+  for (std::size_t e = 0; e < entry_load_.size(); ++e) {
+    if (entry_load_[e] < 0) continue;
+    Load& load = *loads_[entry_load_[e]];
+    if (load.stiff() && !load.potential() && !load.scheme_coefficient()) return entries_[e].first;
+  }
+  return {};
+}
+
+void Dynamics::external_forces(double t, const double* y, const double* v, double* f,
+                               bool without_potentials) {
   // −0 is the exact additive identity (x + −0 = x for every x, +0 included), so the first load
   // adds its force unchanged.
   const std::size_t n = mass_.size();
   std::fill(f, f + 3 * n, -0.0);
   for (auto& load : loads_) {
-    if (load->stiff()) continue;
+    if (load->stiff() || (without_potentials && load->potential())) continue;
     if (load->form() == Load::Form::force) {
       load->add(t, y, v, f);
       continue;

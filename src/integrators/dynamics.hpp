@@ -37,8 +37,19 @@ class Dynamics {
   long force_evaluations() const { return force_evaluations_; }
   // Counts an evaluation of F_int made by the model directly (with its energy, say).
   void count_force_evaluation() { ++force_evaluations_; }
-  // The forces of the loads that are not stiff, M g + F_contact(y, v) + ..., 3N, overwritten.
-  void external_forces(double t, const double* y, const double* v, double* f);
+  // The forces of the loads that are not stiff, M g + F_contact(y, v) + ..., 3N, overwritten;
+  // with `without_potentials`, only those of the loads that give no potential (Load::potential:
+  // an implicit step takes those at its iterates instead).
+  void external_forces(double t, const double* y, const double* v, double* f,
+                       bool without_potentials = false);
+  // The loads that give a potential of the positions, in load order.
+  std::vector<LoadPotential*> potentials() const;
+  // The energy the loads store at positions y (3N), this rank's rows [J] (Load::stored_energy).
+  double stored_energy(const double* y) const;
+  // For implicit integrators that minimise a potential: the ledger entry of a stiff load that
+  // gives no potential and that the schemes do not take as a coefficient, which they cannot
+  // integrate; empty when there is none.
+  std::string implicit_refusal() const;
   // Sets the velocity of every particle held by a constraint active at time t.
   void constrain_velocity(double t, double* v) const { constraints_.constrain_velocity(t, v); }
   // The particles a constraint holds at time t and the velocity each one moves at.

@@ -25,6 +25,24 @@ struct BookedStep {
 // How a ledger entry counts: as work put into the particles, or as energy taken out of them.
 enum class Booking { work, loss };
 
+// A load that implicit integrators take into the potential each step minimises
+// (docs/integrators.md, "Contact"), evaluated at every iterate z instead of once at the step's
+// start: its energy, its gradient and the positive-semidefinite part of its Hessian as 3×3 blocks
+// per particle (what the factor and the Newton matrix take).
+class LoadPotential {
+ public:
+  virtual ~LoadPotential() = default;
+  // Fixes what the potential holds through a stage that ends s = c h after the step's start,
+  // from the positions y (3N) at the step's start: a moving load's place, lagged friction.
+  virtual void begin_stage(const double* y, double s) = 0;
+  // Its energy at z [J], this rank's rows; adds its gradient to `gradient` (3N, or null) and its
+  // Hessian blocks to `blocks` (9 per particle, row-major, or null).
+  virtual double evaluate(const double* z, double* gradient, double* blocks) = 0;
+  // The largest fraction α ≤ 1 of the update dz from z the load admits (1: any); this rank's
+  // rows.
+  virtual double max_step(const double*, const double*) const { return 1; }
+};
+
 class Load {
  public:
   // A force [N] per particle, or an acceleration [m/s²] uniform per unit mass (gravity, damping),
@@ -35,8 +53,18 @@ class Load {
   virtual Form form() const { return Form::force; }
   // A stiff load goes with the internal forces into the implicit half of a split right-hand side
   // (damping); the others are explicit, and implicit integrators that minimise a potential take
-  // them at the step's start (Dynamics::external_forces).
+  // them at the step's start (Dynamics::external_forces) unless they give a potential().
   virtual bool stiff() const { return false; }
+  // The load as a potential of the positions, or nullptr. Implicit integrators that minimise a
+  // potential take it there; they refuse a stiff load that gives none (Dynamics::
+  // implicit_refusal) unless the schemes take it as a coefficient of their own equations.
+  virtual LoadPotential* potential() { return nullptr; }
+  // A stiff load the implicit schemes take into their equations through a coefficient
+  // (damping's c, Dynamics::damping()).
+  virtual bool scheme_coefficient() const { return false; }
+  // The energy it stores at positions y (3N), this rank's rows [J]: a penalty's. The ledger
+  // counts it with the kinetic and elastic energy (stored_energy).
+  virtual double stored_energy(const double*) const { return 0; }
   // Adds its force (or acceleration, by form()) at time t and state (y, v) to `out`, 3N, and
   // keeps what booked() needs.
   virtual void add(double t, const double* y, const double* v, double* out) = 0;

@@ -25,7 +25,9 @@ PetscErrorCode potential_line_search(SNESLineSearch search, void* context) {
   PetscCall(SNESLineSearchGetSNES(search, &snes));
   PetscCall(SNESLineSearchGetVecs(search, &x, &f, &y, &w, &g));
   PetscCall(SNESLineSearchGetNorms(search, &xnorm, &fnorm, &ynorm));
-  if (c->accept_unevaluated && c->accept_unevaluated(y)) {
+  const double bound = c->max_step ? c->max_step(x, y) : 1.0;
+  if (bound < 1) ++c->bounded;
+  if (bound == 1 && c->accept_unevaluated && c->accept_unevaluated(y)) {
     ++c->unevaluated;
     PetscCall(VecAXPY(x, -1, y));
     PetscCall(VecNorm(x, NORM_2, &xnorm));
@@ -41,7 +43,7 @@ PetscErrorCode potential_line_search(SNESLineSearch search, void* context) {
   PetscCall(VecDot(f, y, &slope));
   slope = -slope;
   const double round_off = 1e-10 * c->system->objective_magnitude();
-  PetscReal lambda = 1, energy = 0, norm = 0;
+  PetscReal lambda = bound, energy = 0, norm = 0;
   bool accepted = false;
   for (int trial = 0; trial < 40 && !accepted; ++trial) {
     PetscCall(VecWAXPY(w, -lambda, y, x));

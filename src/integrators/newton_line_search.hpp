@@ -5,7 +5,9 @@
 // solution E's decrease falls below the round-off of E itself (extensions of stiff materials are
 // tiny differences of lengths), where no test on E can decide: a step that keeps E within that
 // round-off and lowers |∇E| is then taken. A step the Newton test has already accepted from its
-// size alone (`accept_unevaluated`) is taken without evaluating anything.
+// size alone (`accept_unevaluated`) is taken without evaluating anything. The trials start from
+// the largest step the loads' potentials admit (`max_step`: no particle driven through a
+// collider), and a cut step is never taken unevaluated.
 #include <petscsnes.h>
 
 #include <functional>
@@ -21,6 +23,9 @@ struct PotentialLineSearch {
   // there; if so it is taken unevaluated (the residual is left at the last point evaluated).
   std::function<bool(Vec direction)> accept_unevaluated;
   long unevaluated = 0;  // steps so taken
+  // The largest λ ≤ 1 such that x − λy stays within the potentials' bounds (1 without any).
+  std::function<double(Vec x, Vec y)> max_step;
+  long bounded = 0;  // steps cut to that bound
 };
 
 // The SNESLineSearchUserFunc; `context` is a PotentialLineSearch.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "core/error.hpp"
 #include "integrators/petsc_session.hpp"
@@ -43,8 +44,8 @@ constexpr PetscReal kGamgThreshold = 0.02;
 
 // One smoothing sweep per level instead of PETSc's two: more CG iterations (21 against 17 per
 // step at 95,187 particles) but cheaper V-cycles, 4.48 against 5.69 s per step there and 0.403
-// against 0.543 s at 7,948 (bench_implicit_step, 2026-12-05; docs/accuracy.md). Set on each level's smoother
-// after every set-up (GAMG may make the levels anew), unless PETSC_OPTIONS sets
+// against 0.543 s at 7,948 (bench_implicit_step, 2026-12-05; docs/accuracy.md). Set on each level's
+// smoother after every set-up (GAMG may make the levels anew), unless PETSC_OPTIONS sets
 // -precond_mg_levels_ksp_max_it: the levels read only the global options database.
 void smooth_once_per_level(PC pc) {
   PetscBool set = PETSC_FALSE;
@@ -98,7 +99,7 @@ const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind) {
 }
 
 PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families,
-                                                         bool distributed) {
+                                                          bool distributed) {
   // Measured on the glass cantilever (docs/accuracy.md, bench_implicit_step, backward Euler at
   // 300× the explicit estimate): the two-hop factor is fastest per step while it fits (7,948
   // particles: 0.069 s per later step, 1.77 GB) but grows far faster than the scene. At 26,973
@@ -277,6 +278,28 @@ void NewtonPreconditioner::copy_values() {
   petsc_check(MatAssemblyEnd(petsc_matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
+// + the loads' Hessian blocks ∇²B⁺ at z (NewtonSystem::add_potential_blocks) on each particle's
+// own block; on the scalar matrix, the block's largest diagonal entry on the particle's row.
+void NewtonPreconditioner::add_potential_blocks(const double* z) {
+  if (!system_.add_potential_blocks(z, blocks_)) return;
+  const int first = static_cast<int>(system_.first_unknown() / 3),
+            end = static_cast<int>(system_.end_unknown() / 3);
+  for (int i = first; i < end; ++i) {
+    const double* b = &blocks_[9 * std::size_t(i)];
+    if (std::all_of(b, b + 9, [](double v) { return v == 0; })) continue;
+    if (kind_ == Kind::scalar) {
+      matrix_.values[diagonal_[i]] += std::max({b[0], b[4], b[8]});
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        const int at = matrix_.find(3 * i + a, 3 * i + c);
+        if (at < 0) throw std::logic_error("a particle's own block is missing from the pattern");
+        matrix_.values[at] += b[3 * a + c];
+      }
+  }
+}
+
 // shift_and_fix with the held rows' scale of the whole matrix: the largest diagonal over the
 // ranks, as one rank takes it.
 void NewtonPreconditioner::shift_and_hold(double inertia) {
@@ -295,15 +318,18 @@ void NewtonPreconditioner::refresh(const double* z) {
       else
         stiffness.assemble_tangent(z, matrix_,
                                    system_.tangent() == NewtonSystem::Tangent::projected);
+      add_potential_blocks(z);
       shift_and_hold(inertia);
       break;
     case Kind::majoriser:
       stiffness.assemble_majoriser(z, matrix_);
+      add_potential_blocks(z);
       shift_and_hold(inertia);
       break;
     case Kind::nearest:
     case Kind::gamg:
       stiffness.assemble_nearest_stiffness(z, nearest_, matrix_);
+      add_potential_blocks(z);
       shift_and_hold(inertia);
       break;
     case Kind::scalar:
@@ -312,6 +338,7 @@ void NewtonPreconditioner::refresh(const double* z) {
         scalar_assembled_ = true;
       }
       matrix_.values = scalar_stiffness_.values;
+      add_potential_blocks(z);
       shift_scalar(matrix_, diagonal_, system_.mass(), inertia, system_.fixed());
       break;
     case Kind::automatic:

@@ -1,7 +1,8 @@
 #pragma once
 // The preconditioner of petsc_newton's linear solves: a matrix close to the Newton matrix
-// A M + K, assembled and factorized (or set up, for multigrid) at one point and then reused
-// for as many Newton iterations and steps as the refresh policy allows (petsc_newton.cpp).
+// A M + K (+ the loads' Hessian blocks, NewtonSystem), assembled and factorized (or set up, for
+// multigrid) at one point and then reused for as many Newton iterations and steps as the refresh
+// policy allows (petsc_newton.cpp).
 //   tangent:   the tangent itself, two-hop 3N×3N, CHOLMOD (an exact Newton matrix when fresh);
 //   majoriser: the bond-wise majoriser K^bw ⪰ K, one-hop 3N×3N, CHOLMOD;
 //   nearest:   the majoriser's bonds to each family's nearest members only, rescaled to the
@@ -64,6 +65,7 @@ class NewtonPreconditioner {
   void copy_values();
   // Column c of matrix_ in the whole scene's numbering (over several ranks), in the same order.
   PetscInt global_column(int c) const;
+  void add_potential_blocks(const double* z);
   void shift_and_hold(double inertia);
   RunError not_positive_definite() const;
 
@@ -72,6 +74,7 @@ class NewtonPreconditioner {
   PetscOptions options_;
   SparseSymmetric matrix_;            // what is factorized, in CHOLMOD's and SEQAIJ's layout
   std::vector<int> diagonal_;         // index of entry (r, r) in matrix_
+  std::vector<double> blocks_;        // the loads' Hessian blocks at the last refresh
   std::vector<char> nearest_;         // nearest: the kept bonds
   SparseSymmetric scalar_stiffness_;  // scalar: L
   bool scalar_assembled_ = false;
@@ -87,7 +90,7 @@ class NewtonPreconditioner {
 // The preconditioner `auto` picks for a scene of these families (docs/integrators.md), on one
 // rank or over several.
 PetscNewtonSettings::Preconditioner choose_preconditioner(const Families& families,
-                                                         bool distributed = false);
+                                                          bool distributed = false);
 const char* preconditioner_name(PetscNewtonSettings::Preconditioner kind);
 
 }  // namespace fissure

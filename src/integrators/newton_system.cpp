@@ -11,6 +11,7 @@ namespace fissure {
 
 NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
     : dynamics_(dynamics), tangent_(tangent) {
+  potentials_ = dynamics.potentials();
   const auto& m = dynamics.mass();
   mass_.resize(3 * m.size());
   for (std::size_t i = 0; i < m.size(); ++i)
@@ -20,9 +21,10 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
   force_.resize(mass_.size());
   external_.resize(mass_.size());
   masked_.resize(mass_.size());
+  if (!potentials_.empty()) potential_gradient_.resize(mass_.size());
   if (tangent == Tangent::majoriser)  // over several ranks the rank's rows only
-    majoriser_ = bond_pattern(dynamics.model().families(), dynamics.first_row(),
-                              dynamics.end_row());
+    majoriser_ =
+        bond_pattern(dynamics.model().families(), dynamics.first_row(), dynamics.end_row());
 }
 
 std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const State& state,
@@ -30,8 +32,11 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   inertia_ = scheme.inertia();
   target_ = scheme.target();
   dynamics_.external_forces(state.time, state.position.data(), state.velocity.data(),
-                            external_.data());
+                            external_.data(), true);
   for (double& f : external_) f *= load_factor;
+  for (LoadPotential* p : potentials_)
+    p->begin_stage(state.position.data(), scheme.stage_fraction() * h);
+  cached_ = false;  // the potentials changed with the stage
   // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
   // ωh ≫ 1 at large steps carry large velocities), from y: whichever has the lower potential.
   // A later SDIRK stage starts from ỹ plus the previous stage's acceleration (scheme.guess).
@@ -49,8 +54,29 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
     }
   linearized_ = false;
   dynamics_.share(z.data());  // the guess's ghosts from their own ranks' velocities
+  if (!potentials_.empty()) {
+    // the guess cut back to what the potentials admit (a particle not driven through a collider)
+    std::vector<double> update(z.size());
+    for (std::size_t k = 0; k < z.size(); ++k) update[k] = z[k] - stay[k];
+    const double alpha = max_step(stay.data(), update.data());
+    if (alpha < 1)
+      for (std::size_t k = 0; k < z.size(); ++k) z[k] = stay[k] + alpha * update[k];
+  }
   if (scheme.later_stage()) return z;
   return objective(stay.data()) < objective(z.data()) ? stay : z;
+}
+
+double NewtonSystem::max_step(const double* z, const double* dz) const {
+  double alpha = 1;
+  for (const LoadPotential* p : potentials_) alpha = std::min(alpha, p->max_step(z, dz));
+  return distributed() ? min_over_ranks(dynamics_.halo()->comm(), alpha) : alpha;
+}
+
+bool NewtonSystem::add_potential_blocks(const double* z, std::vector<double>& blocks) {
+  if (potentials_.empty()) return false;
+  blocks.assign(3 * mass_.size(), 0.0);  // 9 per particle
+  for (LoadPotential* p : potentials_) p->evaluate(z, nullptr, blocks.data());
+  return true;
 }
 
 double NewtonSystem::sum_over_ranks(double value) const {
@@ -70,13 +96,19 @@ void NewtonSystem::evaluate(const double* z, long& passes) {
   }
   elastic_ = dynamics_.model().forces_and_energy(z, force_.data());
   dynamics_.count_force_evaluation();
+  if (!potentials_.empty()) {
+    std::fill(potential_gradient_.begin(), potential_gradient_.end(), 0.0);
+    potential_ = 0;
+    for (LoadPotential* p : potentials_)
+      potential_ += p->evaluate(z, potential_gradient_.data(), nullptr);
+  }
   point_.assign(z, z + n);
   cached_ = true;
   revision_ = revision;
   ++passes;
 }
 
-// E = (A/2)(z − ỹ)ᵀM(z − ỹ) + Π(z) − fᵀ(z − ỹ)
+// E = (A/2)(z − ỹ)ᵀM(z − ỹ) + Π(z) + B(z) − fᵀ(z − ỹ)
 double NewtonSystem::objective(const double* z) {
   evaluate(z, objective_passes);
   double kinetic = 0, work = 0;
@@ -87,28 +119,33 @@ double NewtonSystem::objective(const double* z) {
     kinetic += mass_[k] * d * d;
     work += external_[k] * d;  // fᵀ(z − ỹ): fᵀz up to a constant, without its cancellation
   }
-  double elastic = elastic_;  // this rank's rows' share over several ranks
+  double elastic = elastic_, potential = potential_;  // this rank's rows' share over ranks
   if (distributed()) {
-    std::vector<double> parts = {kinetic, work, elastic};
+    std::vector<double> parts = {kinetic, work, elastic, potential};
     fissure::sum_over_ranks(dynamics_.halo()->comm(), parts);
-    kinetic = parts[0], work = parts[1], elastic = parts[2];
+    kinetic = parts[0], work = parts[1], elastic = parts[2], potential = parts[3];
   }
-  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic) + std::abs(work);
-  return 0.5 * inertia_ * kinetic + elastic - work;
+  magnitude_ = 0.5 * inertia_ * kinetic + std::abs(elastic) + potential + std::abs(work);
+  return 0.5 * inertia_ * kinetic + elastic + potential - work;
 }
 
-// ∇E = A M (z − ỹ) − F_int(z) − f
+// ∇E = A M (z − ỹ) − F_int(z) + ∇B(z) − f
 void NewtonSystem::residual(const double* z, double* r) {
   evaluate(z, residual_passes);
+  const double* b = potentials_.empty() ? nullptr : potential_gradient_.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t k = first_; k < end_; ++k)
-    r[k] = fixed_[k] ? 0.0 : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] - external_[k];
+    r[k] = fixed_[k] ? 0.0
+                     : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] + (b ? b[k] : 0.0) -
+                           external_[k];
 }
 
 std::vector<double> NewtonSystem::reactions() const {
   std::vector<double> reaction(fixed_.size(), 0.0);
   for (std::size_t k = 0; k < fixed_.size(); ++k)
-    if (fixed_[k]) reaction[k] = -(force_[k] + external_[k]);
+    if (fixed_[k])
+      reaction[k] =
+          -(force_[k] - (potentials_.empty() ? 0.0 : potential_gradient_[k]) + external_[k]);
   return reaction;
 }
 
@@ -124,6 +161,11 @@ void NewtonSystem::apply(const double* v, double* out) {
       stiffness.assemble_majoriser(linearization_.data(), majoriser_);
     else
       stiffness.linearize(linearization_.data(), tangent_ == Tangent::projected);
+    if (!potentials_.empty()) {
+      blocks_.assign(9 * mass_.size() / 3, 0.0);
+      for (LoadPotential* p : potentials_)
+        p->evaluate(linearization_.data(), nullptr, blocks_.data());
+    }
     linearized_ = true;
     linearized_tangent_ = tangent_;
     ++linearizations;
@@ -135,6 +177,14 @@ void NewtonSystem::apply(const double* v, double* out) {
     majoriser_.multiply(masked_.data(), out);
   else
     stiffness.apply_tangent(masked_.data(), out);
+  if (!potentials_.empty()) {  // + ∇²B⁺ v, particle by particle
+    const std::ptrdiff_t first = first_ / 3, end = end_ / 3;
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = first; i < end; ++i)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          out[3 * i + a] += blocks_[9 * i + 3 * a + b] * masked_[3 * i + b];
+  }
 #pragma omp parallel for schedule(static)
   for (std::size_t k = first_; k < end_; ++k)
     out[k] = fixed_[k] ? (inertia_ > 0 ? inertia_ * mass_[k] : 1.0) * v[k]

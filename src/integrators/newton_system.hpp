@@ -1,10 +1,12 @@
 #pragma once
 // The nonlinear system of one implicit step, free of any solver library: the incremental
-// potential of implicit_scheme.hpp, its gradient (the residual) and the product of its Hessian
-// A M + K with a vector (matrix-free), with the particles a constraint holds eliminated (their
-// unknowns fixed at the value they must take). The energy and the forces at a point come from
-// one pass over the bonds and are kept, so that a line search asking for the objective and then
-// the residual at the same point pays once.
+// potential of implicit_scheme.hpp with the loads' potentials B (colliders; Load::potential),
+//   E(z) = (A/2)(z − ỹ)ᵀ M (z − ỹ) + Π(z) + B(z) − fᵀz,
+// its gradient (the residual) and the product of its Hessian A M + K + ∇²B⁺ with a vector
+// (matrix-free; ∇²B⁺ the loads' positive-semidefinite blocks), with the particles a constraint
+// holds eliminated (their unknowns fixed at the value they must take). The energy and the forces at
+// a point come from one pass over the bonds and are kept, so that a line search asking for the
+// objective and then the residual at the same point pays once.
 #include <string>
 #include <vector>
 
@@ -27,9 +29,10 @@ class NewtonSystem {
   }
   Tangent tangent() const { return tangent_; }
 
-  // Prepares a stage of size h from `state` (the scheme predicted it): f = M g + contact at the
-  // start of the step, scaled by `load_factor`; held particles fixed. Returns the starting
-  // guess z0.
+  // Prepares a stage of size h from `state` (the scheme predicted it): f = M g + the other loads
+  // that give no potential at the start of the step, scaled by `load_factor`; the potentials'
+  // stage begun; held particles fixed. Returns the starting guess z0, within the potentials'
+  // bounds (max_step).
   std::vector<double> begin_step(const ImplicitScheme& scheme, const State& state, double h,
                                  double load_factor);
   // E(z) and ∇E(z) (zero on held unknowns).
@@ -39,6 +42,13 @@ class NewtonSystem {
   void linearize(const double* z);
   // out = (A M + K) v on free unknowns, A m v on held ones (their rows decoupled).
   void apply(const double* v, double* out);
+  // The largest fraction α ≤ 1 of the update dz from z that the loads' potentials admit
+  // (LoadPotential::max_step); collective.
+  double max_step(const double* z, const double* dz) const;
+  bool has_potentials() const { return !potentials_.empty(); }
+  // Adds the loads' Hessian blocks at z (9 per particle, this rank's rows) to `blocks`; false
+  // (and nothing added) when the scene has no potentials.
+  bool add_potential_blocks(const double* z, std::vector<double>& blocks);
   // What preconditioners need: the unknowns' masses, which are held, the current A.
   const std::vector<double>& mass() const { return mass_; }
   const std::vector<char>& fixed() const { return fixed_; }
@@ -68,19 +78,24 @@ class NewtonSystem {
        linearizations = 0;
 
  private:
-  // F_int(z) and Π(z) into force_ and elastic_, unless z is the point they were computed at
-  // and the model has not changed since (Model::revision).
+  // F_int(z) and Π(z) into force_ and elastic_, and the potentials' B(z) and ∇B(z) into
+  // potential_ and potential_gradient_, unless z is the point they were computed at and the
+  // model has not changed since (Model::revision).
   void evaluate(const double* z, long& passes);
 
   Dynamics& dynamics_;
+  std::vector<LoadPotential*> potentials_;
+  double potential_ = 0;                    // B at point_
+  std::vector<double> potential_gradient_;  // ∇B at point_ (3N, when there are potentials)
+  std::vector<double> blocks_;              // ∇²B⁺ at linearization_, 9 per particle
   Tangent tangent_;
   std::size_t first_ = 0, end_ = 0;  // this rank's unknowns
-  std::vector<char> fixed_;       // per unknown: held by a constraint
-  std::vector<double> mass_;      // per unknown
-  std::vector<double> external_;  // f
-  std::vector<double> target_;    // ỹ
-  std::vector<double> force_;     // F_int at point_
-  std::vector<double> point_;     // where force_ and elastic_ were computed
+  std::vector<char> fixed_;          // per unknown: held by a constraint
+  std::vector<double> mass_;         // per unknown
+  std::vector<double> external_;     // f
+  std::vector<double> target_;       // ỹ
+  std::vector<double> force_;        // F_int at point_
+  std::vector<double> point_;        // where force_ and elastic_ were computed
   double elastic_ = 0;
   bool cached_ = false;
   std::size_t revision_ = 0;           // the model's, at point_

@@ -66,7 +66,7 @@ struct PetscNewton::Solver {
   int iterations_since_refresh = 0;  // in the current Newton solve
   bool solve_fresh = false;  // the last linear solve's factor was made at that iteration's point
   long contraction_refresh_step = -2;  // the step of the last refresh for a slow contraction
-  std::vector<double> norms;         // |r_k| of the current Newton solve
+  std::vector<double> norms;           // |r_k| of the current Newton solve
   // |r| that round-off in the positions alone produces (residual_floor): no Newton iteration
   // can go below it, so a solve there has converged and its contraction means nothing.
   double floor = 0;
@@ -75,14 +75,14 @@ struct PetscNewton::Solver {
   double refresh_contraction = 0.25;
   int refresh_iterations = 6, refresh_krylov = 40;
   long steps = 0, newton_iterations = 0, krylov_iterations = 0;
-  long tangent_fallbacks = 0;     // auto: steps redone with the projected tangent
-  long krylov_fallbacks = 0;      // cg met an indefinite matrix: the step redone with gmres
-  long step_halvings = 0;         // failed steps redone as two halves
-  long fresh_newton_retries = 0;  // stages that failed with a reused factor, redone without
-  long precision_raises = 0;      // half factors too inexact for their matrix: single from then on
-  bool krylov = false;            // a Krylov method runs on the matrix-free tangent
-  double linear_rtol = 1e-3;      // the Krylov method's relative tolerance (-ksp_rtol)
-  bool linear_rtol_fixed = false;    // the user set -ksp_rtol: no stop at the Newton target
+  long tangent_fallbacks = 0;      // auto: steps redone with the projected tangent
+  long krylov_fallbacks = 0;       // cg met an indefinite matrix: the step redone with gmres
+  long step_halvings = 0;          // failed steps redone as two halves
+  long fresh_newton_retries = 0;   // stages that failed with a reused factor, redone without
+  long precision_raises = 0;       // half factors too inexact for their matrix: single from then on
+  bool krylov = false;             // a Krylov method runs on the matrix-free tangent
+  double linear_rtol = 1e-3;       // the Krylov method's relative tolerance (-ksp_rtol)
+  bool linear_rtol_fixed = false;  // the user set -ksp_rtol: no stop at the Newton target
   long linear_solves_to_target = 0;  // Krylov solves stopped at the Newton target, not -ksp_rtol
   bool options_checked = false;
   // Newton's error test (newton_test: local_error, docs/integrators.md): the estimated error
@@ -118,8 +118,7 @@ PetscErrorCode guarded(Solver* s, F&& body) {
 // The 3N array the system reads for this rank's unknowns `local`: on one rank local itself;
 // over several ranks `full` with local at the own range and, for a point (share), the ghosts'
 // values from their ranks. Collective with share.
-const double* to_full(Solver& s, const double* local, std::vector<double>& full,
-                      bool share) {
+const double* to_full(Solver& s, const double* local, std::vector<double>& full, bool share) {
   if (!s.system.distributed()) return local;
   const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
   full.resize(s.system.mass().size());
@@ -162,6 +161,22 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
     *value = s->system.objective(to_full(*s, z, s->full_point, true));
     petsc_check(VecRestoreArrayRead(x, &z), "VecRestoreArrayRead");
   });
+}
+
+// The largest λ ≤ 1 for which the update x − λy keeps the potentials' bounds
+// (NewtonSystem::max_step); collective.
+double bounded_step(Solver& s, Vec x, Vec y) {
+  const PetscScalar* point;
+  const PetscScalar* direction;
+  petsc_check(VecGetArrayRead(x, &point), "VecGetArrayRead");
+  petsc_check(VecGetArrayRead(y, &direction), "VecGetArrayRead");
+  const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
+  std::vector<double> update(s.system.mass().size(), 0.0);
+  for (std::size_t k = first; k < end; ++k) update[k] = -direction[k - first];
+  const double alpha = s.system.max_step(to_full(s, point, s.full_point, true), update.data());
+  petsc_check(VecRestoreArrayRead(y, &direction), "VecRestoreArrayRead");
+  petsc_check(VecRestoreArrayRead(x, &point), "VecRestoreArrayRead");
+  return alpha;
 }
 
 // Whether the last Newton iteration reduced |r| by less than refresh_contraction (above the
@@ -456,6 +471,13 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
     bool accept = false;
     return guarded(&s, [&] { accept = accept_unevaluated(s, direction); }) == 0 && accept;
   };
+  if (s.system.has_potentials())
+    s.line_search.max_step = [&s](Vec x, Vec y) {
+      double alpha = 1;
+      // an error is parked in s.error and ends the solve at its next callback
+      guarded(&s, [&] { alpha = bounded_step(s, x, y); });
+      return alpha;
+    };
   petsc_check(SNESLineSearchShellSetUserFunc(search, potential_line_search, &s.line_search),
               "SNESLineSearchShellSetUserFunc");
   PC pc;
@@ -581,6 +603,13 @@ void PetscNewton::check(const Dynamics& dynamics) const {
                        "this model has no bond-wise majoriser (surface_correction: fictitious): "
                        "use auto, exact or projected");
   }
+  if (const std::string entry = dynamics.implicit_refusal(); !entry.empty())
+    throw InputError(file_, "integrator.type",
+                     fmt::format("petsc_newton cannot take the stiff load booked as '{}': it "
+                                 "gives no potential (energy, gradient and Hessian) for the "
+                                 "step's minimisation (docs/architecture.md, loads); use an "
+                                 "explicit integrator",
+                                 entry));
   ensure_petsc();
   PetscOptions options = read_petsc_options(settings_, file_);
   petsc_check(PetscOptionsDestroy(&options), "PetscOptionsDestroy");
@@ -783,6 +812,7 @@ Statistics PetscNewton::statistics() const {
                       {"krylov_iterations", double(s.krylov_iterations)},
                       {"linear_solves_to_target", double(s.linear_solves_to_target)},
                       {"line_search_cuts", double(s.line_search.cuts)},
+                      {"line_search_bounded", double(s.line_search.bounded)},
                       {"assemblies", double(p.assemblies)},
                       {"factorizations", double(p.factorizations)},
                       {"back_solves", double(p.back_solves)},

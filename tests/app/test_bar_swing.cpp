@@ -30,7 +30,7 @@ TEST(BarSwing, TipFallsThenRises) {
   for (const auto& cells : csv.rows) {
     std::vector<double> v;
     for (const std::string& cell : cells) v.push_back(std::stod(cell));
-    ASSERT_EQ(v.size(), 9u + 8u);  // the tip probe's columns, then the energy ledger's
+    ASSERT_EQ(v.size(), 9u + 9u);  // the tip probe's columns, then the energy ledger's
     time.push_back(v[0]);
     dz.push_back(v[8]);
   }

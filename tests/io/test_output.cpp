@@ -304,7 +304,7 @@ TEST(Output, ProbesCsvHeaderAndRows) {
             "tip.pos_x,tip.pos_y,tip.pos_z,tip.disp_x,tip.disp_y,tip.disp_z,"
             "base.pos_x,base.pos_y,base.pos_z,base.disp_x,base.disp_y,base.disp_z,"
             "gravity_work,constraint_work,collider_work,damping_loss,contact_loss,"
-            "plastic_dissipation,fracture_release,balance_error");
+            "plastic_dissipation,fracture_release,balance_error,stored_energy");
   std::vector<double> expected_times;
   for (int k = 0; k * kProbeEvery <= kEnd - 0.5 * kDt; ++k)
     expected_times.push_back(k * kProbeEvery);
@@ -318,7 +318,7 @@ TEST(Output, ProbesCsvHeaderAndRows) {
       v.push_back(std::stod(cell, &used));
       EXPECT_EQ(used, cell.size()) << cell;
     }
-    ASSERT_EQ(v.size(), 23u) << lines[r];
+    ASSERT_EQ(v.size(), 24u) << lines[r];
     // Sums of 1 ms steps, printed to 9 significant digits: within 1e-9 s of the multiple.
     EXPECT_NEAR(v[0], expected_times[r - 1], 1e-9) << lines[r];
     if (r > 1) {

@@ -60,12 +60,15 @@ std::string scene_with(const std::string& collider) {
 
 TEST(ColliderRecipe, FloorPushesEveryParticleBelowItsHeightByItsPenaltyLaw) {
   ASSERT_TRUE(registered);
-  const double h = 0.03;
-  const Scene scene = build_scene(parse_config(scene_with("{floor: {height: 0.03}}"), "f.yaml"));
+  // the floor below the block at load (a body may not start inside a collider), the block then
+  // lowered by 8 cm into it
+  const double h = -0.05;
+  const Scene scene = build_scene(parse_config(scene_with("{floor: {height: -0.05}}"), "f.yaml"));
   ASSERT_EQ(scene.config.colliders.size(), 1u);
   EXPECT_EQ(scene.config.colliders[0].shape, "floor");
   Colliders colliders(scene);
-  const std::vector<double>& y = scene.particles.reference;
+  std::vector<double> y = scene.particles.reference;
+  for (std::size_t i = 0; i < y.size() / 3; ++i) y[3 * i + 2] -= 0.08;
   const std::vector<double> v(y.size(), 0.0);
   std::vector<double> f(y.size(), 0.0);
   colliders.add_forces(y.data(), v.data(), f.data());
