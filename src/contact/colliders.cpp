@@ -86,11 +86,13 @@ void Colliders::begin_stage(const double* y, double s) {
 }
 
 double Colliders::potential(const double* z, double* gradient, double* blocks) {
-  std::fill(friction_force_.begin(), friction_force_.end(), 0.0);
+  // an evaluation of the forces (a gradient) is what the books and a dynamic collider take
+  const bool record = gradient != nullptr;
+  if (record) std::fill(friction_force_.begin(), friction_force_.end(), 0.0);
   double energy = 0;
   for (State& c : state_) {
-    c.sums = {};
-    energy += c.shape->penalty(law(c), c.stage, z, gradient, blocks, c.sums);
+    ContactSums sums;
+    energy += c.shape->penalty(law(c), c.stage, z, gradient, blocks, sums);
     const Point shift = {c.stage[0] - c.position[0], c.stage[1] - c.position[1],
                          c.stage[2] - c.position[2]};
     for (const LaggedContact& contact : c.lagged) {
@@ -99,11 +101,13 @@ double Colliders::potential(const double* z, double* gradient, double* blocks) {
       slip(contact, z, shift, u);
       energy += lagged_friction(contact, u, stage_length_, g, blocks ? blocks + 9 * i : nullptr);
       for (int k = 0; k < 3; ++k) {
-        if (gradient) gradient[3 * i + k] += g[k];
+        if (!record) continue;
+        gradient[3 * i + k] += g[k];
         friction_force_[3 * i + k] -= g[k];
-        c.sums.friction[k] -= g[k];
+        sums.friction[k] -= g[k];
       }
     }
+    if (record) c.sums = sums;
   }
   return energy;
 }

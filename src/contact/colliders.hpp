@@ -35,7 +35,8 @@ class Colliders {
   // s = c h from y (docs/integrators.md, "Contact"). begin_stage() places the colliders where
   // they are at the stage's end and lags the friction of the contacts at y; potential() returns
   // the penalty and friction energy at z and adds its gradient (3N, or null) and its
-  // positive-semidefinite Hessian blocks (9N, or null), recording the forces as add_forces does.
+  // positive-semidefinite Hessian blocks (9N, or null); with a gradient it records the forces
+  // as add_forces does.
   void begin_stage(const double* y, double s);
   double potential(const double* z, double* gradient, double* blocks);
   // The largest fraction α ≤ 1 of the update dz from z that keeps each particle within its

@@ -161,11 +161,7 @@ void NewtonSystem::apply(const double* v, double* out) {
       stiffness.assemble_majoriser(linearization_.data(), majoriser_);
     else
       stiffness.linearize(linearization_.data(), tangent_ == Tangent::projected);
-    if (!potentials_.empty()) {
-      blocks_.assign(9 * mass_.size() / 3, 0.0);
-      for (LoadPotential* p : potentials_)
-        p->evaluate(linearization_.data(), nullptr, blocks_.data());
-    }
+    add_potential_blocks(linearization_.data(), blocks_);
     linearized_ = true;
     linearized_tangent_ = tangent_;
     ++linearizations;
