@@ -42,9 +42,9 @@ class ColliderShape {
   // `sums`.
   virtual double penalty(const ContactLaw& law, const Point& position, const double* z,
                          double* gradient, double* blocks, ContactSums& sums) const = 0;
-  // The contacts at y, for the step's lagged friction.
+  // The contacts at y, for the step's lagged friction, each anchored at `anchor` (3N).
   virtual void lag(const ContactLaw& law, const Point& position, const double* y,
-                   std::vector<LaggedContact>& out) const = 0;
+                   const double* anchor, std::vector<LaggedContact>& out) const = 0;
   // The largest fraction α ≤ 1 of the update dz from z that keeps every particle's depth within
   // its bound: its contact reach (its centre never crosses the shape's surface), or its depth at
   // z where that is deeper already.
@@ -129,10 +129,10 @@ class ShapeContact : public ColliderShape {
     return sum;
   }
 
-  void lag(const ContactLaw& law, const Point& position, const double* y,
+  void lag(const ContactLaw& law, const Point& position, const double* y, const double* anchor,
            std::vector<LaggedContact>& out) const override {
     for (int i = law.begin; i < law.end; ++i) {
-      LaggedContact c{i, 0, {0, 0, 0}, {y[3 * i], y[3 * i + 1], y[3 * i + 2]}};
+      LaggedContact c{i, 0, {0, 0, 0}, {anchor[3 * i], anchor[3 * i + 1], anchor[3 * i + 2]}};
       const double p = self().penetration(position.data(), y + 3 * i, law.reach[i], c.normal);
       if (p <= 0 || law.friction <= 0) continue;
       c.limit = law.friction * law.stiffness[i] * p;  // μλ, λ = k p

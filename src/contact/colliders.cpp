@@ -76,12 +76,12 @@ double Colliders::energy(const double* y) const {
   return sum;
 }
 
-void Colliders::begin_stage(const double* y, double s) {
-  stage_length_ = s;
+void Colliders::begin_stage(const double* y, const double* anchor, double span, double elapsed) {
+  stage_span_ = span;
   for (State& c : state_) {
-    for (int k = 0; k < 3; ++k) c.stage[k] = c.position[k] + s * c.velocity[k];
+    for (int k = 0; k < 3; ++k) c.stage[k] = c.position[k] + elapsed * c.velocity[k];
     c.lagged.clear();
-    if (s > 0) c.shape->lag(law(c), c.position, y, c.lagged);
+    if (span > 0) c.shape->lag(law(c), c.position, y, anchor, c.lagged);
   }
 }
 
@@ -93,13 +93,14 @@ double Colliders::potential(const double* z, double* gradient, double* blocks) {
   for (State& c : state_) {
     ContactSums sums;
     energy += c.shape->penalty(law(c), c.stage, z, gradient, blocks, sums);
-    const Point shift = {c.stage[0] - c.position[0], c.stage[1] - c.position[1],
-                         c.stage[2] - c.position[2]};
+    // the slip u = span × the tangential velocity relative to the collider
+    const Point shift = {stage_span_ * c.velocity[0], stage_span_ * c.velocity[1],
+                         stage_span_ * c.velocity[2]};
     for (const LaggedContact& contact : c.lagged) {
       const int i = contact.particle;
       double u[3], g[3] = {0, 0, 0};
       slip(contact, z, shift, u);
-      energy += lagged_friction(contact, u, stage_length_, g, blocks ? blocks + 9 * i : nullptr);
+      energy += lagged_friction(contact, u, stage_span_, g, blocks ? blocks + 9 * i : nullptr);
       for (int k = 0; k < 3; ++k) {
         if (!record) continue;
         gradient[3 * i + k] += g[k];

@@ -31,13 +31,14 @@ class Colliders {
   // The penalty energy Σ ½ k p² stored in the contacts at y, over distribute()'s range [J].
   double energy(const double* y) const;
 
-  // Implicit steps: contact as a potential of the positions z at the end of a stage of length
-  // s = c h from y (docs/integrators.md, "Contact"). begin_stage() places the colliders where
-  // they are at the stage's end and lags the friction of the contacts at y; potential() returns
-  // the penalty and friction energy at z and adds its gradient (3N, or null) and its
+  // Implicit steps: contact as a potential of the positions z at the end of a stage
+  // (docs/integrators.md, "Contact"). begin_stage() places the colliders where they are
+  // `elapsed` after the step's start and lags the friction of the contacts at the step's start y,
+  // on the stage's velocity (z − anchor)/span (integrators/load.hpp, PotentialStage); potential()
+  // returns the penalty and friction energy at z and adds its gradient (3N, or null) and its
   // positive-semidefinite Hessian blocks (9N, or null); with a gradient it records the forces
   // as add_forces does.
-  void begin_stage(const double* y, double s);
+  void begin_stage(const double* y, const double* anchor, double span, double elapsed);
   double potential(const double* z, double* gradient, double* blocks);
   // The largest fraction α ≤ 1 of the update dz from z that keeps each particle within its
   // bound (ShapeContact::max_step), over distribute()'s range.
@@ -55,6 +56,8 @@ class Colliders {
   // particles' displacement from `before` to `after` (3N), this rank's rows [J]. The normal
   // forces' work relative to the colliders is the change of energy().
   double work(const double* before, const double* after, double h) const;
+  // Coulomb's μ against the colliders (contact.friction).
+  double friction() const { return friction_; }
   // Momentum of the dynamic colliders, for balances.
   std::array<double, 3> momentum() const;
   // For checkpoints: position and velocity of every collider (6 numbers each), and back.
@@ -81,7 +84,7 @@ class Colliders {
   int begin_ = 0, end_ = 0;  // the particles add_forces() pushes on
   const Halo* halo_ = nullptr;
   std::array<double, 3> gravity_;
-  double stage_length_ = 0;  // implicit: s of the stage
+  double stage_span_ = 0;  // implicit: the stage's span (its velocity (z − anchor)/span)
 };
 
 }  // namespace fissure

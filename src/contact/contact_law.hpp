@@ -24,8 +24,8 @@ struct ContactSums {
 };
 
 // A contact at the start of an implicit step, which the step's friction potential holds fixed
-// (lagged): the particle, μ times its normal force [N], the outward normal and the particle's
-// position.
+// (lagged): the particle, μ times its normal force [N], the outward normal, and the anchor of the
+// particle's stage velocity (z − start)/span.
 struct LaggedContact {
   int particle;
   double limit;

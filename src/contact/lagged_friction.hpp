@@ -2,9 +2,11 @@
 // Friction inside an implicit step (docs/integrators.md, "Contact"): each contact that presses at
 // the step's start keeps its normal n and its Coulomb limit μλ (λ = k p, the normal force then)
 // through the step, which makes friction a smooth dissipative potential of the positions
-// (IPC's lagged friction, Li et al. 2020, §5). With u = (I − n nᵀ)(z − y − s w) the particle's
-// tangential slip relative to the collider (moving at w) over the stage's length s [s], and
-// x = |u|/s its slip speed,
+// (IPC's lagged friction, Li et al. 2020, §5). The scheme makes the stage's velocity of its
+// positions, v = (z − ŷ)/s (backward Euler: ŷ = y_n, s = h; Newmark: ŷ = y_n + h v_n/2, s = h/2;
+// an SDIRK stage: ŷ = Ŷ_i, s = γh; ImplicitScheme::stage_velocity). With u = (I − n nᵀ)(z − ŷ − s
+// w) = s times the particle's tangential velocity relative to the collider (moving at w), and x =
+// |u|/s its slip speed,
 //   D(z) = μλ s f0(x),  f0(x) = x²/(2ε_v) for x ≤ ε_v, x − ε_v/2 beyond,
 //   ∇D = μλ min(x/ε_v, 1) u/|u|,
 // the regularised Coulomb force of the explicit law (contact/collider_shape.hpp) at the stage's
@@ -16,7 +18,7 @@
 
 namespace fissure {
 
-// The slip u of contact c at z over a stage in which the collider moves by `shift`.
+// The slip u of contact c at z, the collider's velocity times the stage's span being `shift`.
 inline void slip(const LaggedContact& c, const double* z, const Point& shift, double* u) {
   const int i = c.particle;
   double d[3], along = 0;

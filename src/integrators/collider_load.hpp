@@ -20,7 +20,9 @@ class ColliderLoad : public Load, public LoadPotential {
   void end_step(double h) override { colliders_.advance(h); }
   void distribute(const Halo& halo) override;
   LoadPotential* potential() override { return this; }
-  void begin_stage(const double* y, double s) override { colliders_.begin_stage(y, s); }
+  void begin_stage(const PotentialStage& s) override {
+    colliders_.begin_stage(s.start, s.anchor, s.span, s.elapsed);
+  }
   double evaluate(const double* z, double* gradient, double* blocks) override {
     return colliders_.potential(z, gradient, blocks);
   }

@@ -106,6 +106,37 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
   }
 }
 
+void ImplicitScheme::stage_velocity(const State& state, const std::vector<double>& acceleration,
+                                    double h, std::vector<double>& anchor, double& span) const {
+  const std::size_t n = state.position.size();
+  const double* y = state.position.data();
+  const double* v = state.velocity.data();
+  const double* a = acceleration.data();
+  anchor.resize(n);
+  switch (kind_) {
+    case Kind::static_equilibrium:
+      span = 0;
+      std::copy(y, y + n, anchor.begin());
+      return;
+    case Kind::sdirk:  // V_i = (Y_i − Ŷ_i)/(γh)
+      span = tableau_->gamma * h;
+      std::copy(explicit_position_.begin(), explicit_position_.end(), anchor.begin());
+      return;
+    case Kind::backward_euler:  // v_{n+1} = (z − y_n)/h
+      span = h;
+      std::copy(y, y + n, anchor.begin());
+      return;
+    case Kind::newmark_alpha: {
+      // v_{n+1} of correct(): its coefficient of z is γ/(β h (1 − α_f)); at z = y_n it is
+      // v_n (1 − γ/β) + h a_n (1 − γ − γ(½ − β)/β)
+      span = beta_ * h * (1 - alpha_f_) / gamma_;
+      const double cv = 1 - gamma_ / beta_, ca = h * (1 - gamma_ - gamma_ * (0.5 - beta_) / beta_);
+      for (std::size_t k = 0; k < n; ++k) anchor[k] = y[k] - span * (cv * v[k] + ca * a[k]);
+      return;
+    }
+  }
+}
+
 std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
   std::vector<double> z(state.position.size());
   if (kind_ == Kind::sdirk && stage_ > 0) {

@@ -39,10 +39,13 @@ class ImplicitScheme {
   // z of a particle that moves at velocity u through the step (held by a constraint), for the
   // stage last predicted.
   double held_value(double y, double u, double h) const { return y + held_fraction_ * h * u; }
-  // The stage's length over h: where in the step the stage's positions are taken (1 for
-  // backward Euler, 1 − α_f for Newmark and generalized-α, c_i for an SDIRK stage; 0 for static,
-  // which has no time).
+  // Where in the step the stage's positions are taken, over h (1 for backward Euler, 1 − α_f
+  // for Newmark and generalized-α, c_i for an SDIRK stage; 0 for static, which has no time).
   double stage_fraction() const { return is_static() ? 0.0 : held_fraction_; }
+  // The velocity the scheme makes of the stage's positions z, affine: (z − anchor)/span, for the
+  // stage last predicted from `state` (span 0 for static).
+  void stage_velocity(const State& state, const std::vector<double>& acceleration, double h,
+                      std::vector<double>& anchor, double& span) const;
   // Records the minimiser z of the stage last predicted (SDIRK; nothing for the others).
   void finish_stage(const std::vector<double>& z, double h);
   // From the minimiser z of the last stage: y_{n+1}, v_{n+1} into `state` and a_{n+1} into

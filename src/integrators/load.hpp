@@ -29,12 +29,21 @@ enum class Booking { work, loss };
 // (docs/integrators.md, "Contact"), evaluated at every iterate z instead of once at the step's
 // start: its energy, its gradient and the positive-semidefinite part of its Hessian as 3×3 blocks
 // per particle (what the factor and the Newton matrix take).
+// An implicit stage as a load's potential sees it: the positions at the step's start (3N), the
+// stage's velocity as the scheme makes it of the stage's positions z, (z − anchor)/span (3N and
+// seconds; span 0 for a static step), and the time from the step's start to the stage's end.
+struct PotentialStage {
+  const double* start;
+  const double* anchor;
+  double span;
+  double elapsed;
+};
+
 class LoadPotential {
  public:
   virtual ~LoadPotential() = default;
-  // Fixes what the potential holds through a stage that ends s = c h after the step's start,
-  // from the positions y (3N) at the step's start: a moving load's place, lagged friction.
-  virtual void begin_stage(const double* y, double s) = 0;
+  // Fixes what the potential holds through a stage: a moving load's place, lagged friction.
+  virtual void begin_stage(const PotentialStage& stage) = 0;
   // Its energy at z [J], this rank's rows; adds its gradient to `gradient` (3N, or null) and its
   // Hessian blocks to `blocks` (9 per particle, row-major, or null).
   virtual double evaluate(const double* z, double* gradient, double* blocks) = 0;

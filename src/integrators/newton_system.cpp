@@ -28,14 +28,21 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
 }
 
 std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const State& state,
-                                             double h, double load_factor) {
+                                             const std::vector<double>& acceleration, double h,
+                                             double load_factor) {
   inertia_ = scheme.inertia();
   target_ = scheme.target();
   dynamics_.external_forces(state.time, state.position.data(), state.velocity.data(),
                             external_.data(), true);
   for (double& f : external_) f *= load_factor;
-  for (LoadPotential* p : potentials_)
-    p->begin_stage(state.position.data(), scheme.stage_fraction() * h);
+  if (!potentials_.empty()) {
+    std::vector<double> anchor;
+    double span = 0;
+    scheme.stage_velocity(state, acceleration, h, anchor, span);
+    const PotentialStage stage{state.position.data(), anchor.data(), span,
+                               scheme.stage_fraction() * h};
+    for (LoadPotential* p : potentials_) p->begin_stage(stage);
+  }
   cached_ = false;  // the potentials changed with the stage
   // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
   // ωh ≫ 1 at large steps carry large velocities), from y: whichever has the lower potential.

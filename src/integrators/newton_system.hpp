@@ -33,7 +33,9 @@ class NewtonSystem {
   // that give no potential at the start of the step, scaled by `load_factor`; the potentials'
   // stage begun; held particles fixed. Returns the starting guess z0, within the potentials'
   // bounds (max_step).
-  std::vector<double> begin_step(const ImplicitScheme& scheme, const State& state, double h,
+  // `acceleration`: a_n, which the scheme predicted with.
+  std::vector<double> begin_step(const ImplicitScheme& scheme, const State& state,
+                                 const std::vector<double>& acceleration, double h,
                                  double load_factor);
   // E(z) and ∇E(z) (zero on held unknowns).
   double objective(const double* z);

@@ -63,7 +63,7 @@ int check_against_differences(const std::string& collider, bool exact) {
   const Scene scene = scene_with(collider);
   Colliders colliders(scene);
   const Points p = pressed(scene);
-  colliders.begin_stage(p.start.data(), 1e-3);
+  colliders.begin_stage(p.start.data(), p.start.data(), 1e-3, 1e-3);
   const Evaluation at = evaluate(colliders, p.end);
   const double eps = 1e-9;
   int touching = 0;
@@ -129,7 +129,7 @@ TEST(ColliderPotential, BodyTouchingAsSampledStartsWithoutEnergy) {
   Colliders colliders(scene);
   const std::vector<double>& x = scene.particles.reference;
   EXPECT_EQ(colliders.energy(x.data()), 0.0);
-  colliders.begin_stage(x.data(), 1e-3);
+  colliders.begin_stage(x.data(), x.data(), 1e-3, 1e-3);
   std::vector<double> gradient(x.size(), 0.0);
   EXPECT_EQ(colliders.potential(x.data(), gradient.data(), nullptr), 0.0);
   for (double g : gradient) EXPECT_EQ(g, 0.0);
@@ -146,7 +146,7 @@ TEST(ColliderPotential, StepBoundKeepsCentresOutside) {
   const Scene scene = scene_with("{plane: {point: [0, 0, 0], normal: [0, 0, 1]}}");
   Colliders colliders(scene);
   const std::vector<double>& x = scene.particles.reference;
-  colliders.begin_stage(x.data(), 1e-3);
+  colliders.begin_stage(x.data(), x.data(), 1e-3, 1e-3);
   std::vector<double> down(x.size(), 0.0);
   double lowest = 1;
   for (std::size_t i = 0; i < x.size() / 3; ++i) {
