@@ -148,10 +148,12 @@ class ShapeContact : public ColliderShape {
       double n[3], w[3];
       for (int k = 0; k < 3; ++k) w[k] = z[3 * i + k] + dz[3 * i + k];
       const double* x = position.data();
-      if (self().penetration(x, w, law.reach[i], n) <= 0) continue;
+      // the full update is admitted where it ends within the reach (at most as deep as at z)
+      const double end = self().penetration(x, w, law.reach[i], n);
+      if (end <= law.reach[i]) continue;
       const double bound =
           std::max(law.reach[i], self().penetration(x, z + 3 * i, law.reach[i], n));
-      if (self().penetration(x, w, law.reach[i], n) <= bound) continue;
+      if (end <= bound) continue;
       // the depth along the update is continuous: bisect for where it reaches the bound
       double lo = 0, hi = 1;
       for (int it = 0; it < 40; ++it) {

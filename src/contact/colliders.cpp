@@ -101,12 +101,12 @@ double Colliders::potential(const double* z, double* gradient, double* blocks) {
       double u[3], g[3] = {0, 0, 0};
       slip(contact, z, shift, u);
       energy += lagged_friction(contact, u, stage_span_, g, blocks ? blocks + 9 * i : nullptr);
-      for (int k = 0; k < 3; ++k) {
-        if (!record) continue;
-        gradient[3 * i + k] += g[k];
-        friction_force_[3 * i + k] -= g[k];
-        sums.friction[k] -= g[k];
-      }
+      if (record)
+        for (int k = 0; k < 3; ++k) {
+          gradient[3 * i + k] += g[k];
+          friction_force_[3 * i + k] -= g[k];
+          sums.friction[k] -= g[k];
+        }
     }
     if (record) c.sums = sums;
   }

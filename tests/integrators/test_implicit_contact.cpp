@@ -323,14 +323,14 @@ TEST(StiffLoadRecipe, LoadWithPotentialIsIntegratedInsideTheStep) {
 TEST(StiffLoadRecipe, StiffLoadWithoutPotentialIsRefused) {
   ASSERT_TRUE(registered);
   const auto dir = test::scratch_dir("refused");
-  test::write_file(dir / "refused.yaml",
-                   "name: refused\ntime: {end: 0.01, dt: 0.001}\n"
-                   "integrator: {type: petsc_newton}\n"
-                   "bodies:\n"
-                   "  - geometry: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
-                   "    resolution: 0.05\n"
-                   "    material: {density: 1000, bulk_modulus: 1.0e5, shear_modulus: 5.0e4}\n");
-  Config config = parse_config(test::slurp(dir / "refused.yaml"), (dir / "refused.yaml").string());
+  Config config = parse_config(
+      "name: refused\ntime: {end: 0.01, dt: 0.001}\n"
+      "integrator: {type: petsc_newton}\n"
+      "bodies:\n"
+      "  - geometry: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
+      "    resolution: 0.05\n"
+      "    material: {density: 1000, bulk_modulus: 1.0e5, shear_modulus: 5.0e4}\n",
+      (dir / "refused.yaml").string());
   config.output.dir = dir.string();
   try {
     run_simulation(config, {});
