@@ -25,10 +25,6 @@ struct BookedStep {
 // How a ledger entry counts: as work put into the particles, or as energy taken out of them.
 enum class Booking { work, loss };
 
-// A load that implicit integrators take into the potential each step minimises
-// (docs/integrators.md, "Contact"), evaluated at every iterate z instead of once at the step's
-// start: its energy, its gradient and the positive-semidefinite part of its Hessian as 3×3 blocks
-// per particle (what the factor and the Newton matrix take).
 // An implicit stage as a load's potential sees it: the positions at the step's start (3N), the
 // stage's velocity as the scheme makes it of the stage's positions z, (z − anchor)/span (3N and
 // seconds; span 0 for a static step), and the time from the step's start to the stage's end.
@@ -39,6 +35,10 @@ struct PotentialStage {
   double elapsed;
 };
 
+// A load that implicit integrators take into the potential each step minimises
+// (docs/integrators.md, "Contact"), evaluated at every iterate z instead of once at the step's
+// start: its energy, its gradient and the positive-semidefinite part of its Hessian as 3×3 blocks
+// per particle (what the factor and the Newton matrix take).
 class LoadPotential {
  public:
   virtual ~LoadPotential() = default;
