@@ -163,8 +163,11 @@ TEST_P(ImplicitDrop, DroppedBlockFallsHitsAndSettles) {
 
 // The block on a 30° incline (gravity tilted, the plane z = 0) at 50 times the explicit step,
 // 1.4e-4 s. With μ = 0.3 it slides at g (sin θ − μ cos θ): its mean displacement along the
-// slope is ½ g (sin θ − μ cos θ) t², within 2% from 0.06 s on (backward Euler's first-order error
-// is h/t = 2e-3 at 0.06 s; the start's settling on the penalty is a few 1e-9 m). With μ = 0.7
+// slope is ½ g (sin θ − μ cos θ) t², within 1% from 0.06 s on: backward Euler's first-order error
+// h/t is 2.3e-3 at 0.06 s, and the first step, which starts with no contact pressing (the rest
+// state) and so with no friction lagged, adds μ g cos θ h to the velocity, 2 μ g cos θ h/(a t) =
+// 5.1e-3 of the displacement at 0.06 s (measured: 7.4e-3 for backward Euler, 5.1e-3 for SDIRK3;
+// the issue asks for 2%). With μ = 0.7
 // Coulomb holds it; the regularised law lets it creep at most at ε_v = 1e-3 m/s, ε_v t. Friction
 // taken at the step's start, or lagged with the wrong limit, fails both. Backward Euler and SDIRK3
 // pass; the other schemes failed (sdirk4 slid 27% too far, newmark crept 13 times ε_v t where it
@@ -212,7 +215,7 @@ TEST_P(ImplicitDrop, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
     std::printf("%s, mu %.1f: %s %.3g\n", integrator.name.c_str(), mu,
                 a > 0 ? "largest |x / (a t^2/2) - 1|" : "largest x / (eps_v t_end)", worst);
     EXPECT_EQ(r.summary.status, "completed");
-    EXPECT_LT(worst, a > 0 ? 0.02 : 1.0);
+    EXPECT_LT(worst, a > 0 ? 0.01 : 1.0);
   }
 }
 
