@@ -60,10 +60,9 @@ void EnergyGrowthCheck::after_step(const RunParts& run, const Step& step) {
                 "time.dt (the explicit stable estimate is {:.3g} s){}",
                 type, dt, stable_dt,
                 run.dynamics.colliders()
-                    ? "; with colliders, the schemes that carry the step's starting "
-                      "acceleration (newmark, alpha, esdirk4) create energy where a contact "
-                      "opens or closes within a step far above the contact's own time scale: "
-                      "backward_euler, sdirk3 and sdirk4 do not (docs/integrators.md, "
+                    ? "; with colliders, an impact far faster than the step is safe with "
+                      "backward_euler, sdirk3 and newmark, which never gain energy at a "
+                      "contact; alpha, sdirk4 and esdirk4 may (docs/integrators.md, "
                       "\"Contact\")"
                     : "");
   throw StopRun("unstable", fmt::format("{}; {}. Outputs up to this point are kept in {}", what,

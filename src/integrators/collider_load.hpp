@@ -26,6 +26,7 @@ class ColliderLoad : public Load, public LoadPotential {
   double evaluate(const double* z, double* gradient, double* blocks) override {
     return colliders_.potential(z, gradient, blocks);
   }
+  bool contact() const override { return true; }
   double max_step(const double* z, const double* dz) const override {
     return colliders_.max_step(z, dz);
   }

@@ -65,24 +65,27 @@ void Dynamics::internal_forces(const double* y, double* f) {
 }
 
 void Dynamics::add_loads(Load::Form form, bool stiff_only, double t, const double* y,
-                         const double* v, double* out) {
+                         const double* v, double* out, bool without_contact) {
   for (auto& load : loads_)
-    if (load->form() == form && (!stiff_only || load->stiff())) load->add(t, y, v, out);
+    if (load->form() == form && (!stiff_only || load->stiff()) &&
+        !(without_contact && load->potential() && load->potential()->contact()))
+      load->add(t, y, v, out);
 }
 
 // Each sum below keeps the order of a = F_int/m + g − c v as written: the forces first, then
 // the accelerations in load order, so every integrator's bits stay those of Eq 2 summed left to
 // right.
-void Dynamics::acceleration(double t, const double* y, const double* v, double* a) {
+void Dynamics::acceleration(double t, const double* y, const double* v, double* a,
+                            bool without_contact) {
   internal_forces(y, force_.data());
-  add_loads(Load::Form::force, false, t, y, v, force_.data());
+  add_loads(Load::Form::force, false, t, y, v, force_.data(), without_contact);
   const int n = static_cast<int>(mass_.size());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double inv_m = 1.0 / mass_[i];
     for (int k = 0; k < 3; ++k) a[3 * i + k] = force_[3 * i + k] * inv_m;
   }
-  add_loads(Load::Form::acceleration, false, t, y, v, a);
+  add_loads(Load::Form::acceleration, false, t, y, v, a, without_contact);
   constraints_.hold(t, a, Constraints::Part::whole);
 }
 

@@ -26,7 +26,14 @@ class Dynamics {
   // a = (F_int(y) + Σ forces)/m + Σ accelerations (g − c v), zero where a constraint holds the
   // particle at time t. The loads keep their forces and the constraints their reactions for the
   // ledger (booked()).
-  void acceleration(double t, const double* y, const double* v, double* a);
+  void acceleration(double t, const double* y, const double* v, double* a) {
+    acceleration(t, y, v, a, false);
+  }
+  // The same without contact, the loads whose potential is contact's (LoadPotential::contact),
+  // which implicit schemes take at their stages' end points (implicit_scheme.hpp).
+  void acceleration_without_contact(double t, const double* y, const double* v, double* a) {
+    acceleration(t, y, v, a, true);
+  }
   // The same split in two, for implicit–explicit methods: a = implicit + explicit.
   //   implicit: F_int(y)/m + the stiff loads (− c v);  explicit: the other loads, F/m.
   // Both are zero where a constraint holds the particle at time t.
@@ -96,9 +103,11 @@ class Dynamics {
   }
 
  private:
-  // Adds the loads of `form` (and only the stiff ones with `stiff_only`) to out.
+  void acceleration(double t, const double* y, const double* v, double* a, bool without_contact);
+  // Adds the loads of `form` (only the stiff ones with `stiff_only`, and without contact with
+  // `without_contact`) to out.
   void add_loads(Load::Form form, bool stiff_only, double t, const double* y, const double* v,
-                 double* out);
+                 double* out, bool without_contact = false);
 
   Model& model_;
   std::vector<double> mass_;

@@ -40,6 +40,7 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
   const double* y = state.position.data();
   const double* v = state.velocity.data();
   const double* a = acceleration.data();
+  potential_weight_ = 1;
   switch (kind_) {
     case Kind::static_equilibrium:
       inertia_ = 0;
@@ -74,6 +75,8 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
         }
       }
       const double gh = t.gamma * h;
+      // B's share of the explicit first stage, h a_i1 V'_1, taken at this stage's end point
+      if (t.explicit_stage(0)) potential_weight_ = (t.gamma + t.a[stage * t.stages]) / t.gamma;
       damping_ = c;
       inertia_ = (1 + gh * c) / (gh * gh);
       held_fraction_ = t.c(stage);
@@ -90,6 +93,13 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
       // M a_{n+1−α_m} + c M v_{n+1−α_f} = F(z) + f with z = y_{n+1−α_f}, and Newmark's
       // y_{n+1} = y_n + h v_n + h²((½ − β) a_n + β a_{n+1}), v_{n+1} = v_n + h((1 − γ) a_n + γ
       // a_{n+1}). The left side is affine in z, A z + k, so ỹ = −k/A with k its value at z = 0.
+      // B's acceleration a_B enters a_{n+1} as a_B/γ and is not carried into a_n: it changes the
+      // velocity by h a_B, an impulse at the step's end. For Newmark the position then moves by
+      // h(v_n + v_{n+1})/2 and a convex B cannot gain energy: ΔK = −∇B(y_{n+1})·Δy ≤ −ΔB (Kane,
+      // Repetto, Ortiz & Marsden 1999). Generalized-α takes a_B at y_{n+1} (at z it created
+      // energy at every bounce): the equation gains (1 − α_m) a_B(y_{n+1})/γ, the gradient of
+      // (1 − α_m)(1 − α_f)/γ B(y_n + (z − y_n)/(1 − α_f)).
+      potential_weight_ = (1 - alpha_m_) * (1 - alpha_f_) / gamma_;
       const double b = beta_ * h * h;
       inertia_ = (1 - alpha_m_) / (b * (1 - alpha_f_)) + c * gamma_ / (beta_ * h);
 #pragma omp parallel for schedule(static)
@@ -141,11 +151,14 @@ std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
   std::vector<double> z(state.position.size());
   if (kind_ == Kind::sdirk && stage_ > 0) {
     // Y_i = ỹ + M⁻¹(F + f)(Y_i)/A, with M⁻¹(F + f) = V' + cV taken from the previous stage.
+    // (contact's share as this stage weighs it)
     const double* v = stage_velocity_[stage_ - 1].data();
     const double* a = stage_acceleration_[stage_ - 1].data();
+    const double* b = stage_contact_.empty() ? nullptr : stage_contact_.data();
+    const double moved = potential_weight_ - 1;
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < z.size(); ++k)
-      z[k] = target_[k] + (a[k] + damping_ * v[k]) / inertia_;
+      z[k] = target_[k] + (a[k] + damping_ * v[k] + (b ? moved * b[k] : 0.0)) / inertia_;
     return z;
   }
   const double step = kind_ == Kind::static_equilibrium ? 0.0
@@ -155,16 +168,20 @@ std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
   return z;
 }
 
-void ImplicitScheme::finish_stage(const std::vector<double>& z, double h) {
+void ImplicitScheme::finish_stage(const std::vector<double>& z, const std::vector<double>& contact,
+                                  double h) {
   if (kind_ != Kind::sdirk) return;
-  // V_i = (Y_i − Ŷ_i)/(γh), V'_i = (V_i − V̂_i)/(γh)
-  const double gh = tableau_->gamma * h;
+  // V_i = (Y_i − Ŷ_i)/(γh), V'_i = (V_i − V̂_i)/(γh); V'_i holds w a_B, of which the later stages
+  // take a_B (the share w − 1 was the first stage's)
+  const double gh = tableau_->gamma * h, moved = potential_weight_ - 1;
   double* velocity = stage_velocity_[stage_].data();
   double* acceleration = stage_acceleration_[stage_].data();
+  const double* b = contact.empty() ? nullptr : contact.data();
+  stage_contact_ = contact;
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < z.size(); ++k) {
     velocity[k] = (z[k] - explicit_position_[k]) / gh;
-    acceleration[k] = (velocity[k] - explicit_velocity_[k]) / gh;
+    acceleration[k] = (velocity[k] - explicit_velocity_[k]) / gh - (b ? moved * b[k] : 0.0);
   }
 }
 
@@ -193,12 +210,13 @@ ImplicitScheme::ErrorSums ImplicitScheme::local_error(double h, const std::vecto
   return sums;
 }
 
-void ImplicitScheme::correct(const std::vector<double>& z, State& state,
-                             std::vector<double>& acceleration, double h) const {
+void ImplicitScheme::correct(const std::vector<double>& z, const std::vector<double>& contact,
+                             State& state, std::vector<double>& acceleration, double h) const {
   const std::size_t n = z.size();
   double* y = state.position.data();
   double* v = state.velocity.data();
   double* a = acceleration.data();
+  const double* b = contact.empty() ? nullptr : contact.data();
   switch (kind_) {
     case Kind::static_equilibrium:
       // Inertia is ignored: the body is at rest in each equilibrium.
@@ -221,26 +239,26 @@ void ImplicitScheme::correct(const std::vector<double>& z, State& state,
         }
       }
       const double* last = stage_acceleration_[t.stages - 1].data();
-      std::copy(last, last + n, a);
+      for (std::size_t k = 0; k < n; ++k) a[k] = last[k] - (b ? b[k] : 0.0);
       return;
     }
     case Kind::backward_euler:
 #pragma omp parallel for schedule(static)
       for (std::size_t k = 0; k < n; ++k) {
         const double v1 = (z[k] - y[k]) / h;
-        a[k] = (v1 - v[k]) / h;
+        a[k] = (v1 - v[k]) / h - (b ? b[k] : 0.0);
         v[k] = v1;
         y[k] = z[k];
       }
       return;
     case Kind::newmark_alpha: {
-      const double b = beta_ * h * h;
+      const double bh2 = beta_ * h * h;
 #pragma omp parallel for schedule(static)
       for (std::size_t k = 0; k < n; ++k) {
         const double y1 = y[k] + (z[k] - y[k]) / (1 - alpha_f_);
-        const double a1 = (y1 - y[k] - h * v[k] - h * h * (0.5 - beta_) * a[k]) / b;
+        const double a1 = (y1 - y[k] - h * v[k] - h * h * (0.5 - beta_) * a[k]) / bh2;
         v[k] += h * ((1 - gamma_) * a[k] + gamma_ * a1);
-        a[k] = a1;
+        a[k] = a1 - (b ? b[k] / gamma_ : 0.0);  // a_{n+1} without a_B/γ
         y[k] = y1;
       }
       return;

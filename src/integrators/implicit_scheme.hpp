@@ -5,6 +5,12 @@
 // the start of the step, and turns the minimiser z back into positions and velocities. A
 // singly diagonally implicit Runge–Kutta scheme (SDIRK) takes one such minimisation per stage,
 // all with the same A, so one factor serves every stage and step.
+//
+// Contact's potential B (LoadPotential::contact) is taken at the stage's end point only: a_n and
+// an ESDIRK's explicit first stage carry the other forces, never B's, so a contact that opens
+// within a step is not pushed on by its force from the step's start (docs/integrators.md,
+// "Contact"). Each stage weighs B by potential_weight(), and finish_stage() and correct() take
+// B's acceleration at the minimiser, −M⁻¹∇B, to keep it out of what is carried.
 #include <vector>
 
 #include "integrators/integrator.hpp"
@@ -46,12 +52,22 @@ class ImplicitScheme {
   // stage last predicted from `state` (span 0 for static).
   void stage_velocity(const State& state, const std::vector<double>& acceleration, double h,
                       std::vector<double>& anchor, double& span) const;
+  // Where the stage takes B: at y_n + s (z − y_n), s = potential_scale() (1, but 1/(1 − α_f)
+  // for generalized-α, which takes B at y_{n+1} rather than at its z = y_{n+1−α_f}).
+  double potential_scale() const { return kind_ == Kind::newmark_alpha ? 1 / (1 - alpha_f_) : 1; }
+  // The weight w of B in the potential of the stage last predicted, w B(y_n + s (z − y_n)): 1,
+  // but (1 − α_m)(1 − α_f)/γ for Newmark and generalized-α (2 for Newmark) and (γ + a_i1)/γ for
+  // an ESDIRK's implicit stages, which take B's share of the explicit first stage at their own
+  // end point.
+  double potential_weight() const { return potential_weight_; }
   // Records the minimiser z of the stage last predicted (SDIRK; nothing for the others).
-  void finish_stage(const std::vector<double>& z, double h);
+  // `contact`: −M⁻¹∇B where the stage takes B, 3N, or empty when the scene has no
+  // potentials.
+  void finish_stage(const std::vector<double>& z, const std::vector<double>& contact, double h);
   // From the minimiser z of the last stage: y_{n+1}, v_{n+1} into `state` and a_{n+1} into
-  // `acceleration`.
-  void correct(const std::vector<double>& z, State& state, std::vector<double>& acceleration,
-               double h) const;
+  // `acceleration`, without B's share (`contact` as for finish_stage).
+  void correct(const std::vector<double>& z, const std::vector<double>& contact, State& state,
+               std::vector<double>& acceleration, double h) const;
   // True while a stage after an SDIRK step's first implicit one is being solved.
   bool later_stage() const {
     return kind_ == Kind::sdirk && stage_ > (tableau_->explicit_stage(0) ? 1 : 0);
@@ -78,6 +94,7 @@ class ImplicitScheme {
   // Generalized-α (Chung & Hulbert 1993); Newmark's average acceleration is α_m = α_f = 0.
   double alpha_m_ = 0, alpha_f_ = 0, beta_ = 0.25, gamma_ = 0.5;
   double inertia_ = 0;
+  double potential_weight_ = 1;
   double held_fraction_ = 1;  // z − y of a held particle over h u: (1 − α_f), or c_i of a stage
   std::vector<double> target_;
   // SDIRK: the tableau, the stage being solved, and per stage i its velocity V_i and
@@ -86,7 +103,8 @@ class ImplicitScheme {
   int stage_ = 0;
   std::vector<std::vector<double>> stage_velocity_, stage_acceleration_;
   std::vector<double> explicit_position_, explicit_velocity_;
-  double damping_ = 0;  // c of the stage being solved
+  std::vector<double> stage_contact_;  // contact's acceleration at the last stage solved
+  double damping_ = 0;                 // c of the stage being solved
 };
 
 }  // namespace fissure

@@ -50,6 +50,10 @@ class LoadPotential {
   // The largest fraction α ≤ 1 of the update dz from z the load admits (1: any); this rank's
   // rows.
   virtual double max_step(const double*, const double*) const { return 1; }
+  // True for contact, whose force switches on and off within a step: the schemes take it at the
+  // step's end and never carry it to the next step or stage (implicit_scheme.hpp). False for a
+  // smooth potential, integrated as the elastic forces are, at the scheme's own order.
+  virtual bool contact() const { return false; }
 };
 
 class Load {

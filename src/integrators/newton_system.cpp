@@ -21,7 +21,11 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
   force_.resize(mass_.size());
   external_.resize(mass_.size());
   masked_.resize(mass_.size());
-  if (!potentials_.empty()) potential_gradient_.resize(mass_.size());
+  for (const LoadPotential* p : potentials_) has_contact_ = has_contact_ || p->contact();
+  if (!potentials_.empty()) {
+    smooth_gradient_.resize(mass_.size());
+    contact_gradient_.resize(mass_.size());
+  }
   if (tangent == Tangent::majoriser)  // over several ranks the rank's rows only
     majoriser_ =
         bond_pattern(dynamics.model().families(), dynamics.first_row(), dynamics.end_row());
@@ -31,6 +35,9 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
                                              const std::vector<double>& acceleration, double h,
                                              double load_factor) {
   inertia_ = scheme.inertia();
+  weight_ = scheme.potential_weight();
+  scale_ = scheme.potential_scale();
+  if (scale_ != 1) origin_ = state.position;
   target_ = scheme.target();
   dynamics_.external_forces(state.time, state.position.data(), state.velocity.data(),
                             external_.data(), true);
@@ -41,7 +48,13 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
     scheme.stage_velocity(state, acceleration, h, anchor, span);
     const PotentialStage stage{state.position.data(), anchor.data(), span,
                                scheme.stage_fraction() * h};
-    for (LoadPotential* p : potentials_) p->begin_stage(stage);
+    // contact's: the stage's velocity (z − anchor)/span as a function of p = y_n + s (z − y_n)
+    std::vector<double> mapped = anchor;
+    for (std::size_t k = 0; k < mapped.size(); ++k)
+      mapped[k] = state.position[k] + scale_ * (anchor[k] - state.position[k]);
+    const PotentialStage at_p{state.position.data(), mapped.data(), scale_ * span,
+                              scale_ * stage.elapsed};
+    for (LoadPotential* p : potentials_) p->begin_stage(p->contact() ? at_p : stage);
   }
   cached_ = false;  // the potentials changed with the stage
   // Newton starts from the extrapolation y + (1 − α_f)h v or, where that overshoots (modes with
@@ -73,17 +86,54 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   return objective(stay.data()) < objective(z.data()) ? stay : z;
 }
 
+const double* NewtonSystem::potential_point(const double* z, std::vector<double>& out) const {
+  if (scale_ == 1) return z;
+  out.resize(origin_.size());
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = origin_[k] + scale_ * (z[k] - origin_[k]);
+  return out.data();
+}
+
 double NewtonSystem::max_step(const double* z, const double* dz) const {
   double alpha = 1;
-  for (const LoadPotential* p : potentials_) alpha = std::min(alpha, p->max_step(z, dz));
+  std::vector<double> point, update;
+  const double* p = potential_point(z, point);
+  const double* dp = dz;
+  if (scale_ != 1) {
+    update.assign(dz, dz + origin_.size());
+    for (double& u : update) u *= scale_;
+    dp = update.data();
+  }
+  for (const LoadPotential* load : potentials_)
+    alpha = std::min(alpha, load->contact() ? load->max_step(p, dp) : load->max_step(z, dz));
   return distributed() ? min_over_ranks(dynamics_.halo()->comm(), alpha) : alpha;
 }
 
 bool NewtonSystem::add_potential_blocks(const double* z, std::vector<double>& blocks) {
   if (potentials_.empty()) return false;
   blocks.assign(3 * mass_.size(), 0.0);  // 9 per particle
-  for (LoadPotential* p : potentials_) p->evaluate(z, nullptr, blocks.data());
+  if (has_contact_) {
+    const double* p = potential_point(z, mapped_);
+    for (LoadPotential* load : potentials_)
+      if (load->contact()) load->evaluate(p, nullptr, blocks.data());
+    const double factor = weight_ * scale_ * scale_;
+    if (factor != 1)
+      for (double& b : blocks) b *= factor;
+  }
+  for (LoadPotential* load : potentials_)
+    if (!load->contact()) load->evaluate(z, nullptr, blocks.data());
   return true;
+}
+
+void NewtonSystem::potential_acceleration(const double* z, std::vector<double>& out) {
+  if (!has_contact_) {
+    out.clear();
+    return;
+  }
+  evaluate(z, residual_passes);
+  out.assign(mass_.size(), 0.0);
+  for (std::size_t k = first_; k < end_; ++k)
+    if (!fixed_[k]) out[k] = -contact_gradient_[k] / mass_[k];
 }
 
 double NewtonSystem::sum_over_ranks(double value) const {
@@ -104,10 +154,15 @@ void NewtonSystem::evaluate(const double* z, long& passes) {
   elastic_ = dynamics_.model().forces_and_energy(z, force_.data());
   dynamics_.count_force_evaluation();
   if (!potentials_.empty()) {
-    std::fill(potential_gradient_.begin(), potential_gradient_.end(), 0.0);
-    potential_ = 0;
-    for (LoadPotential* p : potentials_)
-      potential_ += p->evaluate(z, potential_gradient_.data(), nullptr);
+    std::fill(smooth_gradient_.begin(), smooth_gradient_.end(), 0.0);
+    std::fill(contact_gradient_.begin(), contact_gradient_.end(), 0.0);
+    smooth_ = contact_ = 0;
+    const double* p = has_contact_ ? potential_point(z, mapped_) : z;
+    for (LoadPotential* load : potentials_)
+      if (load->contact())
+        contact_ += load->evaluate(p, contact_gradient_.data(), nullptr);
+      else
+        smooth_ += load->evaluate(z, smooth_gradient_.data(), nullptr);
   }
   point_.assign(z, z + n);
   cached_ = true;
@@ -115,7 +170,7 @@ void NewtonSystem::evaluate(const double* z, long& passes) {
   ++passes;
 }
 
-// E = (A/2)(z − ỹ)ᵀM(z − ỹ) + Π(z) + B(z) − fᵀ(z − ỹ)
+// E = (A/2)(z − ỹ)ᵀM(z − ỹ) + Π(z) + S(z) + w B(p(z)) − fᵀ(z − ỹ)
 double NewtonSystem::objective(const double* z) {
   evaluate(z, objective_passes);
   double kinetic = 0, work = 0;
@@ -126,7 +181,7 @@ double NewtonSystem::objective(const double* z) {
     kinetic += mass_[k] * d * d;
     work += external_[k] * d;  // fᵀ(z − ỹ): fᵀz up to a constant, without its cancellation
   }
-  double elastic = elastic_, potential = potential_;  // this rank's rows' share over ranks
+  double elastic = elastic_, potential = smooth_ + weight_ * contact_;  // this rank's share
   if (distributed()) {
     std::vector<double> parts = {kinetic, work, elastic, potential};
     fissure::sum_over_ranks(dynamics_.halo()->comm(), parts);
@@ -136,15 +191,17 @@ double NewtonSystem::objective(const double* z) {
   return 0.5 * inertia_ * kinetic + elastic + potential - work;
 }
 
-// ∇E = A M (z − ỹ) − F_int(z) + ∇B(z) − f
+// ∇E = A M (z − ỹ) − F_int(z) + ∇S(z) + w s ∇B(p(z)) − f
 void NewtonSystem::residual(const double* z, double* r) {
   evaluate(z, residual_passes);
-  const double* b = potentials_.empty() ? nullptr : potential_gradient_.data();
+  const double* s = potentials_.empty() ? nullptr : smooth_gradient_.data();
+  const double* b = potentials_.empty() ? nullptr : contact_gradient_.data();
+  const double factor = weight_ * scale_;
 #pragma omp parallel for schedule(static)
   for (std::size_t k = first_; k < end_; ++k)
     r[k] = fixed_[k] ? 0.0
-                     : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] + (b ? b[k] : 0.0) -
-                           external_[k];
+                     : inertia_ * mass_[k] * (z[k] - target_[k]) - force_[k] +
+                           (b ? s[k] + factor * b[k] : 0.0) - external_[k];
 }
 
 std::vector<double> NewtonSystem::reactions() const {
@@ -152,7 +209,8 @@ std::vector<double> NewtonSystem::reactions() const {
   for (std::size_t k = 0; k < fixed_.size(); ++k)
     if (fixed_[k])
       reaction[k] =
-          -(force_[k] - (potentials_.empty() ? 0.0 : potential_gradient_[k]) + external_[k]);
+          -(force_[k] - (potentials_.empty() ? 0.0 : smooth_gradient_[k] + contact_gradient_[k]) +
+            external_[k]);
   return reaction;
 }
 
@@ -180,7 +238,7 @@ void NewtonSystem::apply(const double* v, double* out) {
     majoriser_.multiply(masked_.data(), out);
   else
     stiffness.apply_tangent(masked_.data(), out);
-  if (!potentials_.empty()) {  // + ∇²B⁺ v, particle by particle
+  if (!potentials_.empty()) {  // + (∇²S⁺ + w s² ∇²B⁺) v, particle by particle
     const std::ptrdiff_t first = first_ / 3, end = end_ / 3;
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = first; i < end; ++i)

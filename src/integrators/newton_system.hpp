@@ -1,9 +1,11 @@
 #pragma once
 // The nonlinear system of one implicit step, free of any solver library: the incremental
 // potential of implicit_scheme.hpp with the loads' potentials B (colliders; Load::potential),
-//   E(z) = (A/2)(z − ỹ)ᵀ M (z − ỹ) + Π(z) + B(z) − fᵀz,
-// its gradient (the residual) and the product of its Hessian A M + K + ∇²B⁺ with a vector
-// (matrix-free; ∇²B⁺ the loads' positive-semidefinite blocks), with the particles a constraint
+//   E(z) = (A/2)(z − ỹ)ᵀ M (z − ỹ) + Π(z) + S(z) + w B(p(z)) − fᵀz,   p(z) = y_n + s (z − y_n)
+// (S the smooth potentials, B contact's: LoadPotential::contact; w and s the scheme's
+// ImplicitScheme::potential_weight and potential_scale), its gradient (the residual) and the
+// product of its Hessian A M + K + ∇²S⁺ + w s² ∇²B⁺ with a vector (matrix-free; ∇²S⁺, ∇²B⁺ the
+// loads' positive-semidefinite blocks), with the particles a constraint
 // holds eliminated (their unknowns fixed at the value they must take). The energy and the forces at
 // a point come from one pass over the bonds and are kept, so that a line search asking for the
 // objective and then the residual at the same point pays once.
@@ -44,13 +46,20 @@ class NewtonSystem {
   void linearize(const double* z);
   // out = (A M + K) v on free unknowns, A m v on held ones (their rows decoupled).
   void apply(const double* v, double* out);
-  // The largest fraction α ≤ 1 of the update dz from z that the loads' potentials admit
+  // The largest fraction α ≤ 1 of the update dz from z that the loads' potentials admit (contact's
+  // at p)
   // (LoadPotential::max_step); collective.
   double max_step(const double* z, const double* dz) const;
   bool has_potentials() const { return !potentials_.empty(); }
-  // Adds the loads' Hessian blocks at z (9 per particle, this rank's rows) to `blocks`; false
-  // (and nothing added) when the scene has no potentials.
+  // Whether some potential is contact's (LoadPotential::contact).
+  bool has_contact() const { return has_contact_; }
+  // Sets `blocks` to the loads' Hessian blocks, ∇²S⁺(z) + w s² ∇²B⁺(p(z)) (9 per particle, this
+  // rank's rows); false (and `blocks` untouched) when the scene has no potentials.
   bool add_potential_blocks(const double* z, std::vector<double>& blocks);
+  // Contact's acceleration −M⁻¹∇B(p(z)) (3N, zero on held unknowns and other ranks' rows), for
+  // ImplicitScheme::finish_stage and correct; empty when the scene has no contact potential.
+  // Collective.
+  void potential_acceleration(const double* z, std::vector<double>& out);
   // What preconditioners need: the unknowns' masses, which are held, the current A.
   const std::vector<double>& mass() const { return mass_; }
   const std::vector<char>& fixed() const { return fixed_; }
@@ -80,16 +89,23 @@ class NewtonSystem {
        linearizations = 0;
 
  private:
-  // F_int(z) and Π(z) into force_ and elastic_, and the potentials' B(z) and ∇B(z) into
-  // potential_ and potential_gradient_, unless z is the point they were computed at and the
-  // model has not changed since (Model::revision).
+  // p(z): z itself where s = 1, else written to `out`.
+  const double* potential_point(const double* z, std::vector<double>& out) const;
+  // F_int(z) and Π(z) into force_ and elastic_, and the potentials' S(z), B(p(z)) and their
+  // gradients into smooth_, contact_ and their gradients, unless z is the point they were computed
+  // at and the model has not changed since (Model::revision).
   void evaluate(const double* z, long& passes);
 
   Dynamics& dynamics_;
   std::vector<LoadPotential*> potentials_;
-  double potential_ = 0;                    // B at point_
-  std::vector<double> potential_gradient_;  // ∇B at point_ (3N, when there are potentials)
-  std::vector<double> blocks_;              // ∇²B⁺ at linearization_, 9 per particle
+  bool has_contact_ = false;             // some potential is contact's
+  double weight_ = 1, scale_ = 1;        // w and s of the stage
+  std::vector<double> origin_;           // y_n, for p(z) where s ≠ 1
+  std::vector<double> mapped_;           // scratch: p(z)
+  double smooth_ = 0, contact_ = 0;      // S and B at point_
+  std::vector<double> smooth_gradient_;  // ∇S and ∇B at point_ (3N, when there are potentials)
+  std::vector<double> contact_gradient_;
+  std::vector<double> blocks_;  // ∇²S⁺ + w s² ∇²B⁺ at linearization_, 9 per particle
   Tangent tangent_;
   std::size_t first_ = 0, end_ = 0;  // this rank's unknowns
   std::vector<char> fixed_;          // per unknown: held by a constraint

@@ -526,13 +526,16 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   s.evaluate_every_update = settings.evaluate_every_update;
   if (settings.newton_test == T::automatic &&
       settings.scheme == PetscNewtonSettings::Scheme::esdirk4) {
-    // a user who sets the residual's tolerances asks for the residual test
+    // a user who sets the residual's tolerances asks for the residual test. Contact's active set
+    // changes from one Newton iterate to the next, which the test's contraction estimate does
+    // not model: with colliders it stopped ESDIRK4 short of the solution on the incline of
+    // test_implicit_contact.cpp, and the step created energy.
     bool residual_set = false;
     for (const char* name : {"-snes_rtol", "-snes_atol", "-snes_stol"}) {
       petsc_check(PetscOptionsHasName(s.options, nullptr, name, &set), "PetscOptionsHasName");
       residual_set = residual_set || set;
     }
-    s.error_test = !residual_set;
+    s.error_test = !residual_set && !s.system.has_contact();
   }
   // settings made in code are not parsed
   if (const std::string refusal = newton_test_refusal(settings); !refusal.empty())
@@ -603,19 +606,15 @@ void PetscNewton::check(const Dynamics& dynamics) const {
                        "this model has no bond-wise majoriser (surface_correction: fictitious): "
                        "use auto, exact or projected");
   }
-  // Lagged friction is verified on the incline of test_implicit_contact.cpp for these schemes
-  // only: sdirk4 slid 27% too far at μ = 0.3, newmark crept 13 times the regularisation's bound
-  // where μ = 0.7 holds the block, esdirk4 and alpha create energy at contacts.
+  // Lagged friction is verified on the incline of test_implicit_contact.cpp for every scheme but
+  // sdirk4, which slid 20% too far at μ = 0.3.
   using Scheme = PetscNewtonSettings::Scheme;
-  const Scheme scheme = settings_.scheme;
   if (dynamics.colliders() && dynamics.colliders()->friction() > 0 &&
-      scheme != Scheme::backward_euler && scheme != Scheme::sdirk3 &&
-      scheme != Scheme::static_equilibrium)
+      settings_.scheme == Scheme::sdirk4)
     throw InputError(file_, "integrator.scheme",
-                     fmt::format("'{}' with friction against colliders (contact.friction) gives "
-                                 "wrong sliding or sticking; use backward_euler or sdirk3 "
-                                 "(docs/integrators.md, \"Contact\")",
-                                 scheme_name(scheme)));
+                     "'sdirk4' with friction against colliders (contact.friction) slides too "
+                     "far; use esdirk4, the same order and stability with smaller weights, or "
+                     "sdirk3 (docs/integrators.md, \"Contact\")");
   if (const std::string entry = dynamics.implicit_refusal(); !entry.empty())
     throw InputError(file_, "integrator.type",
                      fmt::format("petsc_newton cannot take the stiff load booked as '{}': it "
@@ -670,8 +669,9 @@ void PetscNewton::advance(Dynamics& dynamics, State& state, double dt, int halvi
   Solver& s = *solver_;
   if (!s.have_acceleration) {
     s.acceleration.resize(state.position.size());
-    dynamics.acceleration(state.time, state.position.data(), state.velocity.data(),
-                          s.acceleration.data());
+    // without contact's forces, which each stage takes at its end (implicit_scheme.hpp)
+    dynamics.acceleration_without_contact(state.time, state.position.data(), state.velocity.data(),
+                                          s.acceleration.data());
     s.have_acceleration = true;
   }
   const State start = state;
@@ -699,7 +699,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   // static: loads ramp linearly over integrator.steps increments, then stay
   const double load =
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;
-  std::vector<double> z;
+  std::vector<double> z, contact;  // contact: the potentials' acceleration at z
   const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
   s.gamma_h = s.scheme.gamma() * dt;
   // One Newton solve from z with the given tangent; false if PETSc failed (e.g. the tangent
@@ -786,7 +786,8 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     std::copy(solution, solution + (end - first), z.begin() + first);
     petsc_check(VecRestoreArrayRead(s.unknowns, &solution), "VecRestoreArrayRead");
     dynamics.share(z.data());
-    s.scheme.finish_stage(z, dt);
+    s.system.potential_acceleration(z.data(), contact);
+    s.scheme.finish_stage(z, contact, dt);
   }
   if (s.error_test) {
     const ImplicitScheme::ErrorSums e =
@@ -795,7 +796,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
     s.local_error_position = mass > 0 ? std::sqrt(s.system.sum_over_ranks(e.position) / mass) : 0;
     s.local_error_velocity = mass > 0 ? std::sqrt(s.system.sum_over_ranks(e.velocity) / mass) : 0;
   }
-  s.scheme.correct(z, state, s.acceleration, dt);
+  s.scheme.correct(z, contact, state, s.acceleration, dt);
   dynamics.share(state.position.data());  // for the post-step and the next step
   dynamics.set_constraint_reactions(s.system.reactions());
   state.time += dt;

@@ -11,10 +11,10 @@ struct SdirkTableau {
   std::string name;
   int stages;
   int order;
-  double gamma;            // a_ii
-  std::vector<double> a;   // stages × stages, row major, lower triangular
-  std::vector<double> b;   // weights
-  bool stiffly_accurate;   // b is the last row of a: y_{n+1} is the last stage
+  double gamma;           // a_ii
+  std::vector<double> a;  // stages × stages, row major, lower triangular
+  std::vector<double> b;  // weights
+  bool stiffly_accurate;  // b is the last row of a: y_{n+1} is the last stage
   // Weights of an embedded scheme one order lower (empty if the tableau has none): h Σ (b_i −
   // b̂_i) k_i estimates the step's local error.
   std::vector<double> b_embedded = {};

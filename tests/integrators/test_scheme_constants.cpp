@@ -160,9 +160,9 @@ Motion scheme_step(ImplicitScheme& scheme, const Oscillator& o, Motion m, double
     if (scheme.explicit_stage()) continue;
     const double inertia = scheme.inertia();
     z[0] = inertia * scheme.target()[0] / (inertia + o.omega * o.omega);
-    scheme.finish_stage(z, h);
+    scheme.finish_stage(z, {}, h);
   }
-  scheme.correct(z, state, acceleration, h);
+  scheme.correct(z, {}, state, acceleration, h);
   return {state.position[0], state.velocity[0], acceleration[0]};
 }
 

@@ -31,7 +31,7 @@ double largest_start_distance(PetscNewtonSettings::Scheme which, double h) {
     const double a = scheme.inertia();
     const double solution = a * scheme.target()[0] / (a + omega * omega);
     if (stage > 0) largest = std::max(largest, std::abs(scheme.guess(state, h)[0] - solution));
-    scheme.finish_stage({solution}, h);
+    scheme.finish_stage({solution}, {}, h);
   }
   return largest;
 }
