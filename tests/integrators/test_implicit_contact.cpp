@@ -1,154 +1,35 @@
-// Contact inside the implicit step (docs/integrators.md, "Contact"): a glass block touching the
-// ground as sampled rests under every integrator, and dropped it falls, hits and settles without
-// creating energy, its ledger balanced with the penalty's stored energy. And the recipe for a
-// stiff load (docs/architecture.md): one that gives its potential is integrated inside the
-// step, one that gives none is refused by petsc_newton, naming it.
-//
-// The block: 10 cm of Table 1's glass (κ 33 GPa, μ 20 GPa, ρ 2200, 48 particles at λ = 5 cm).
-// At rest its weight M g = 21.6 N sags it by about ρ g H²/(2E) ≈ 2e-9 m and presses its 16 bottom
-// particles in by M g/(16 k) ≈ 1.5e-9 m (k = κ V^(1/3) ≈ 9e8 N/m): a start at rest oscillates
-// about that by as much again, so the top moves by well under 1e-7 m and the kinetic energy stays
-// below M g × 1e-7 = 2e-6 J. A launched block (a penalty acting on the sampled overlap) moves by
-// metres.
+// Contact inside the implicit step (docs/integrators.md, "Contact"): friction against a collider
+// under each petsc_newton scheme, and the recipe for a stiff load (docs/architecture.md): one
+// that gives its potential is integrated inside the step, one that gives none is refused by
+// petsc_newton, naming it. The glass block resting and dropped under every integrator family is
+// in the stability suite (tests/stability/test_contact_blocks.cpp).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "app/run_fissure.hpp"
-#include "app/simulation.hpp"
 #include "contact/collider_shape.hpp"
-#include "core/error.hpp"
 #include "integrators/load_registry.hpp"
-#include "support/csv.hpp"
+#include "support/contact_block.hpp"
 
 namespace fissure {
 namespace {
 
-// A block at height `bottom` above the ground plane z = 0; probes every `every` seconds.
-std::string glass_block(double bottom, double end, const std::string& integrator) {
-  return fmt::format(
-      "name: glass_block\n"
-      "time: {{end: {}, dt: auto}}\n"
-      "gravity: [0, 0, -9.81]\n"
-      "integrator: {}\n"
-      "bodies:\n"
-      "  - name: block\n"
-      "    geometry: {{box: {{min: [0, 0, {}], max: [0.1, 0.1, {}]}}}}\n"
-      "    resolution: 0.05\n"
-      "    material: {{density: 2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\n"
-      "colliders:\n  - {{plane: {{point: [0, 0, 0], normal: [0, 0, 1]}}}}\n"
-      "probes:\n  - {{name: top, region: {{box: {{min: [-1, -1, {}], max: [1, 1, 1]}}}}}}\n"
-      "output: {{every: {}, probe_every: {}}}\n",
-      end, integrator, bottom, bottom + 0.1, bottom + 0.07, end, end / 200);
-}
+using test::Integrator;
 
 // Every scheme, those that carry an acceleration from step to step (Newmark, generalized-α,
-// ESDIRK4's explicit first stage) included: they take the contact at the step's end
-// (docs/integrators.md, "Contact"), at ω h ≈ 28 for the glass block's contacts.
-struct Integrator {
-  std::string name, yaml, dt;  // dt: auto, or a fixed step
+// ESDIRK4's explicit first stage) included: they take the contact at the step's end.
+const Integrator kSchemes[] = {
+    {"backward_euler", "{type: petsc_newton, scheme: backward_euler}", "1.4e-4"},
+    {"sdirk3", "{type: petsc_newton, scheme: sdirk3}", "1.4e-4"},
+    {"sdirk4", "{type: petsc_newton, scheme: sdirk4}", "1.4e-4"},
+    {"newmark", "{type: petsc_newton, scheme: newmark}", "1.4e-4"},
+    {"alpha", "{type: petsc_newton, scheme: alpha}", "1.4e-4"},
+    {"esdirk4", "{type: petsc_newton, scheme: esdirk4}", "1.4e-4"},
 };
 
-const Integrator kIntegrators[] = {
-    {"velocity_verlet", "{type: velocity_verlet}", "auto"},
-    {"backward_euler", "{type: petsc_newton, scheme: backward_euler}", "2e-4"},
-    {"sdirk3", "{type: petsc_newton, scheme: sdirk3}", "2e-4"},
-    {"sdirk4", "{type: petsc_newton, scheme: sdirk4}", "2e-4"},
-    {"newmark", "{type: petsc_newton, scheme: newmark}", "2e-4"},
-    {"alpha", "{type: petsc_newton, scheme: alpha}", "2e-4"},
-    {"esdirk4", "{type: petsc_newton, scheme: esdirk4}", "2e-4"},
-};
-
-struct Outcome {
-  RunSummary summary;
-  std::map<std::string, std::vector<double>> probes;
-  std::string stopped;  // the message of a run that stopped
-};
-
-Outcome run(const std::string& yaml, const Integrator& integrator) {
-  const auto dir = test::scratch_dir(integrator.name);
-  std::vector<std::string> overrides;
-  if (integrator.dt != "auto") overrides.push_back("time.dt=" + integrator.dt);
-  Config config = parse_config(yaml, (dir / "block.yaml").string(), overrides);
-  config.output.dir = dir.string();
-  Outcome r;
-  try {
-    r.summary = run_simulation(config, {});
-  } catch (const RunError& e) {
-    r.stopped = e.what();
-  }
-  r.probes = test::read_probes(dir / "probes.csv");
-  return r;
-}
-
-double largest(const std::vector<double>& values) {
-  double m = 0;
-  for (double v : values) m = std::max(m, std::abs(v));
-  return m;
-}
-
-class ImplicitContact : public ::testing::TestWithParam<Integrator> {};
-
-TEST_P(ImplicitContact, BlockTouchingTheGroundAsSampledRests) {
-  const Integrator& integrator = GetParam();
-  const Outcome r = run(glass_block(0, 0.02, integrator.yaml), integrator);
-  ASSERT_EQ(r.stopped, "");
-  const double moved = largest(r.probes.at("top.disp_z"));
-  const double kinetic = largest(r.probes.at("kinetic_energy"));
-  std::printf(
-      "%s: resting glass block, largest top displacement %.3g m, kinetic energy %.3g J, "
-      "stored %.3g J, balance error %.3g, %ld steps\n",
-      integrator.name.c_str(), moved, kinetic, largest(r.probes.at("stored_energy")),
-      r.summary.energy_drift, r.summary.steps);
-  EXPECT_EQ(r.summary.status, "completed");
-  EXPECT_LT(moved, 1e-7);
-  EXPECT_LT(kinetic, 2e-6);
-  EXPECT_GT(largest(r.probes.at("stored_energy")), 0);  // it does press on the ground
-}
-
-// Dropped from 3 cm it hits the ground at √(2 g h) = 0.77 m/s. Whatever the scheme, K + Π
-// never exceeds the potential energy it fell through (gravity_work) by more than 1%; the
-// penalty's stored energy is the rest. Backward Euler damps the impact's stiff modes (ω h ≫ 1)
-// and it settles on the plane within the run; the others damp less and may still be bouncing.
-// Newmark, which takes the contact as an impulse at the step's end, never gains: K + Π + U stays
-// below the work but for the nonlinear share of the elastic energy and Newton's tolerance.
-class ImplicitDrop : public ::testing::TestWithParam<Integrator> {};
-
-TEST_P(ImplicitDrop, DroppedBlockFallsHitsAndSettles) {
-  const Integrator& integrator = GetParam();
-  const Outcome r = run(glass_block(0.03, 0.3, integrator.yaml), integrator);
-  ASSERT_EQ(r.stopped, "");
-  const auto& k = r.probes.at("kinetic_energy");
-  const auto& pi = r.probes.at("elastic_energy");
-  const auto& u = r.probes.at("stored_energy");
-  const auto& w = r.probes.at("gravity_work");
-  double worst = 0, worst_total = -1;
-  for (std::size_t row = 1; row < k.size(); ++row) {
-    worst = std::max(worst, (k[row] + pi[row]) / w[row] - 1);
-    worst_total = std::max(worst_total, (k[row] + pi[row] + u[row]) / w[row] - 1);
-  }
-  const double final_speed2 = 2 * k.back() / (2200 * 1e-3);
-  const auto& top = r.probes.at("top.pos_z");
-  const double height = top.back(), fallen = top.front() - top.back();
-  std::printf(
-      "%s: dropped block, (K + Π)/W − 1 at most %.3g, (K + Π + U)/W − 1 at most %.3g, "
-      "final kinetic %.3g J, fell %.6f m, balance error %.3g\n",
-      integrator.name.c_str(), worst, worst_total, k.back(), fallen, r.summary.energy_drift);
-  EXPECT_EQ(r.summary.status, "completed");
-  EXPECT_LT(worst, 0.01);
-  if (integrator.name == "newmark") {
-    EXPECT_LT(worst_total, 1e-6);
-  } else if (integrator.name == "backward_euler") {
-    // at rest on the plane: its bottom particles' centres within their radius of it (the block
-    // stops between 0.03 − r and 0.03 below where it started, r = ½ V^(1/3) ≤ 1.25 cm here)
-    EXPECT_LT(std::sqrt(final_speed2), 1e-3);
-    EXPECT_LT(std::abs(top[top.size() - 2] - height), 1e-8);
-    EXPECT_LE(fallen, 0.03);
-    EXPECT_GE(fallen, 0.03 - 0.0125);
-  }
-}
+class ImplicitFriction : public ::testing::TestWithParam<Integrator> {};
 
 // The block on a 30° incline (gravity tilted, the plane z = 0) at 50 times the explicit step,
 // 1.4e-4 s. With μ = 0.3 it slides at g (sin θ − μ cos θ): its mean displacement along the
@@ -160,7 +41,7 @@ TEST_P(ImplicitDrop, DroppedBlockFallsHitsAndSettles) {
 // ε_v = 1e-3 m/s, ε_v t. Friction taken at the step's start, or lagged with the wrong limit,
 // fails both; so did Newmark with the contact carried in its a_n (it crept 13 ε_v t). SDIRK4
 // slides 20% too far and is refused with friction against colliders.
-TEST_P(ImplicitDrop, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
+TEST_P(ImplicitFriction, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
   const Integrator& integrator = GetParam();
   const double g = 9.81, theta = std::acos(-1.0) / 6;
   for (const double mu : {0.3, 0.7}) {
@@ -174,13 +55,12 @@ TEST_P(ImplicitDrop, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
         "probes:\n  - {{name: all, region: {{box: {{min: [-1, -1, -1], max: [1, 1, 1]}}}}}}\n"
         "output: {{every: 0.3, probe_every: 0.01}}\n",
         g * std::sin(theta), -g * std::cos(theta), integrator.yaml, mu);
-    Integrator at_50 = integrator;
-    at_50.dt = "1.4e-4";
+    Integrator at_50 = integrator;  // 50 times the explicit step
     at_50.name += mu < 0.5 ? "_slides" : "_sticks";
     if (integrator.name == "sdirk4") {
       // refused with friction against colliders, naming the scheme
       try {
-        run(yaml, at_50);
+        test::run_block(yaml, at_50);
         ADD_FAILURE() << integrator.name << " ran with friction against a collider";
       } catch (const InputError& e) {
         EXPECT_EQ(e.key(), "integrator.scheme");
@@ -188,7 +68,7 @@ TEST_P(ImplicitDrop, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
       }
       continue;
     }
-    const Outcome r = run(yaml, at_50);
+    const test::BlockRun r = test::run_block(yaml, at_50);
     const auto& t = r.probes.at("time");
     const auto& x = r.probes.at("all.disp_x");
     const double a = g * (std::sin(theta) - mu * std::cos(theta));
@@ -205,11 +85,7 @@ TEST_P(ImplicitDrop, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, ImplicitContact, ::testing::ValuesIn(kIntegrators),
-                         [](const auto& info) { return info.param.name; });
-// velocity Verlet needs 130,000 steps for the drop: the implicit schemes only
-INSTANTIATE_TEST_SUITE_P(Implicit, ImplicitDrop,
-                         ::testing::ValuesIn(std::begin(kIntegrators) + 1, std::end(kIntegrators)),
+INSTANTIATE_TEST_SUITE_P(Schemes, ImplicitFriction, ::testing::ValuesIn(kSchemes),
                          [](const auto& info) { return info.param.name; });
 
 // The stiff-load recipe. A tether pulls each particle back to where it started with the spring

@@ -1,0 +1,72 @@
+#pragma once
+// The 10 cm glass block of the contact tests (tests/stability/test_contact_blocks.cpp,
+// tests/integrators/test_implicit_contact.cpp): Table 1's glass (κ 33 GPa, μ 20 GPa, ρ 2200),
+// 48 particles at λ = 5 cm, above the ground plane z = 0, run in-process with one integrator.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/run_fissure.hpp"
+#include "app/simulation.hpp"
+#include "core/error.hpp"
+#include "support/csv.hpp"
+
+namespace fissure::test {
+
+// A block at height `bottom` above the ground plane z = 0; probes every `every` seconds.
+inline std::string glass_block(double bottom, double end, const std::string& integrator) {
+  return fmt::format(
+      "name: glass_block\n"
+      "time: {{end: {}, dt: auto}}\n"
+      "gravity: [0, 0, -9.81]\n"
+      "integrator: {}\n"
+      "bodies:\n"
+      "  - name: block\n"
+      "    geometry: {{box: {{min: [0, 0, {}], max: [0.1, 0.1, {}]}}}}\n"
+      "    resolution: 0.05\n"
+      "    material: {{density: 2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\n"
+      "colliders:\n  - {{plane: {{point: [0, 0, 0], normal: [0, 0, 1]}}}}\n"
+      "probes:\n  - {{name: top, region: {{box: {{min: [-1, -1, {}], max: [1, 1, 1]}}}}}}\n"
+      "output: {{every: {}, probe_every: {}}}\n",
+      end, integrator, bottom, bottom + 0.1, bottom + 0.07, end, end / 200);
+}
+
+// An integrator as a scene's `integrator:` value and its step.
+struct Integrator {
+  std::string name, yaml, dt;  // dt: auto, or a fixed step
+};
+
+struct BlockRun {
+  RunSummary summary;
+  std::map<std::string, std::vector<double>> probes;
+  std::string stopped;  // the message of a run that stopped
+};
+
+inline BlockRun run_block(const std::string& yaml, const Integrator& integrator) {
+  const auto dir = scratch_dir(integrator.name);
+  std::vector<std::string> overrides;
+  if (integrator.dt != "auto") overrides.push_back("time.dt=" + integrator.dt);
+  Config config = parse_config(yaml, (dir / "block.yaml").string(), overrides);
+  config.output.dir = dir.string();
+  BlockRun r;
+  try {
+    r.summary = run_simulation(config, {});
+  } catch (const RunError& e) {
+    r.stopped = e.what();
+  }
+  r.probes = test::read_probes(dir / "probes.csv");
+  return r;
+}
+
+// The largest |value|.
+inline double largest(const std::vector<double>& values) {
+  double m = 0;
+  for (double v : values) m = std::max(m, std::abs(v));
+  return m;
+}
+
+}  // namespace fissure::test
