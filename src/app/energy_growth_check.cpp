@@ -61,9 +61,9 @@ void EnergyGrowthCheck::after_step(const RunParts& run, const Step& step) {
                 type, dt, stable_dt,
                 run.dynamics.colliders()
                     ? "; with colliders, an impact far faster than the step is safe with "
-                      "backward_euler, sdirk3 and newmark, which never gain energy at a "
-                      "contact; alpha, sdirk4 and esdirk4 may (docs/integrators.md, "
-                      "\"Contact\")"
+                      "petsc_newton's backward_euler, sdirk3 and newmark, which never gain "
+                      "energy at a contact; its alpha, sdirk4 and esdirk4 may, and arkode "
+                      "takes colliders explicitly (docs/integrators.md, \"Contact\")"
                     : "");
   throw StopRun("unstable", fmt::format("{}; {}. Outputs up to this point are kept in {}", what,
                                         advice, run.config.output.dir));

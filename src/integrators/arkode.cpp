@@ -206,8 +206,13 @@ double Arkode::step(Dynamics& dynamics, State& state, double dt) {
   if (flag < 0)
     throw RunError(fmt::format(
         "arkode ({}): the step from t = {:.6g} s failed: {}. Try a looser rtol/atol, a smaller "
-        "time.dt or another method",
-        method_.name, state.time, ARKStepGetReturnFlagName(flag)));
+        "time.dt or another method{}",
+        method_.name, state.time, ARKStepGetReturnFlagName(flag),
+        dynamics.colliders() && method_.kind != ArkodeMethod::Kind::explicit_rk
+            ? "; arkode takes colliders explicitly, so its implicit methods need a step that "
+              "resolves the contacts: for large steps with contact use petsc_newton "
+              "(docs/integrators.md, \"Contact\")"
+            : ""));
   const double* u = N_VGetArrayPointer(s.u);
   const std::size_t first = s.first, rows = s.count;
   for (std::size_t k = 0; k < rows; ++k) state.position[first + k] = s.origin[first + k] + u[k];

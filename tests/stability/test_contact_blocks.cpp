@@ -104,6 +104,25 @@ TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   }
 }
 
+// ARKODE's implicit and IMEX methods take the colliders in their explicit part: at 2e-4 s a
+// contact's force is integrated explicitly far past its own stable step. Such a run stops,
+// never completes: Newton fails (SDIRK_2_1_2) or the energy-growth check stops it (ARK436L2SA,
+// at its 10th step), and either message points to petsc_newton.
+TEST(ContactBlocksArkode, ImplicitMethodsAtALargeStepStopWithAClearMessage) {
+  for (const std::string method : {"SDIRK_2_1_2", "ARK436L2SA"}) {
+    const Integrator integrator{"arkode_" + method,
+                                "{type: arkode, method: " + method + ", fixed_step: true}", "2e-4"};
+    const BlockRun r = run_block(glass_block(0, 0.02, integrator.yaml), integrator);
+    std::printf("%s: %s\n", method.c_str(), r.stopped.c_str());
+    ASSERT_NE(r.stopped, "") << method << " completed";
+    const bool newton = r.stopped.find("ARK_CONV_FAILURE") != std::string::npos &&
+                        r.stopped.find("use petsc_newton") != std::string::npos;
+    const bool growth = r.stopped.find("energy grew") != std::string::npos &&
+                        r.stopped.find("petsc_newton's backward_euler") != std::string::npos;
+    EXPECT_TRUE(newton || growth) << r.stopped;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Families, ContactBlocks, ::testing::ValuesIn(kFamilies),
                          [](const auto& info) { return info.param.name; });
 
