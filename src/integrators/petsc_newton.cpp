@@ -699,7 +699,7 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
   // static: loads ramp linearly over integrator.steps increments, then stay
   const double load =
       s.scheme.is_static() ? std::min(1.0, double(++s.increments) / settings_.steps) : 1.0;
-  std::vector<double> z, contact;  // contact: the potentials' acceleration at z
+  std::vector<double> z, contact;  // contact: contact's acceleration at z (NewtonSystem)
   const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
   s.gamma_h = s.scheme.gamma() * dt;
   // One Newton solve from z with the given tangent; false if PETSc failed (e.g. the tangent
