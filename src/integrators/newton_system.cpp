@@ -49,11 +49,14 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
     const PotentialStage stage{state.position.data(), anchor.data(), span,
                                scheme.stage_fraction() * h};
     // contact's: the stage's velocity (z − anchor)/span as a function of p = y_n + s (z − y_n)
-    std::vector<double> mapped = anchor;
-    for (std::size_t k = 0; k < mapped.size(); ++k)
-      mapped[k] = state.position[k] + scale_ * (anchor[k] - state.position[k]);
-    const PotentialStage at_p{state.position.data(), mapped.data(), scale_ * span,
-                              scale_ * stage.elapsed};
+    std::vector<double> mapped;
+    if (scale_ != 1) {
+      mapped.resize(anchor.size());
+      for (std::size_t k = 0; k < mapped.size(); ++k)
+        mapped[k] = state.position[k] + scale_ * (anchor[k] - state.position[k]);
+    }
+    const PotentialStage at_p{state.position.data(), scale_ != 1 ? mapped.data() : anchor.data(),
+                              scale_ * span, scale_ * stage.elapsed};
     for (LoadPotential* p : potentials_) p->begin_stage(p->contact() ? at_p : stage);
   }
   cached_ = false;  // the potentials changed with the stage

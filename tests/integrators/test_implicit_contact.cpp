@@ -18,17 +18,6 @@ namespace {
 
 using test::Integrator;
 
-// Every scheme, those that carry an acceleration from step to step (Newmark, generalized-α,
-// ESDIRK4's explicit first stage) included: they take the contact at the step's end.
-const Integrator kSchemes[] = {
-    {"backward_euler", "{type: petsc_newton, scheme: backward_euler}", "1.4e-4"},
-    {"sdirk3", "{type: petsc_newton, scheme: sdirk3}", "1.4e-4"},
-    {"sdirk4", "{type: petsc_newton, scheme: sdirk4}", "1.4e-4"},
-    {"newmark", "{type: petsc_newton, scheme: newmark}", "1.4e-4"},
-    {"alpha", "{type: petsc_newton, scheme: alpha}", "1.4e-4"},
-    {"esdirk4", "{type: petsc_newton, scheme: esdirk4}", "1.4e-4"},
-};
-
 class ImplicitFriction : public ::testing::TestWithParam<Integrator> {};
 
 // The block on a 30° incline (gravity tilted, the plane z = 0) at 50 times the explicit step,
@@ -85,7 +74,8 @@ TEST_P(ImplicitFriction, BlockOnInclineSlidesAtCoulombsRateOrSticks) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Schemes, ImplicitFriction, ::testing::ValuesIn(kSchemes),
+INSTANTIATE_TEST_SUITE_P(Schemes, ImplicitFriction,
+                         ::testing::ValuesIn(test::petsc_newton_schemes("1.4e-4")),
                          [](const auto& info) { return info.param.name; });
 
 // The stiff-load recipe. A tether pulls each particle back to where it started with the spring

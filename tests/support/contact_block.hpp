@@ -40,6 +40,15 @@ struct Integrator {
   std::string name, yaml, dt;  // dt: auto, or a fixed step
 };
 
+// Every petsc_newton scheme at the step dt, those that carry an acceleration from step to step
+// (Newmark, generalized-α, ESDIRK4's explicit first stage) included.
+inline std::vector<Integrator> petsc_newton_schemes(const std::string& dt) {
+  std::vector<Integrator> schemes;
+  for (const char* scheme : {"backward_euler", "sdirk3", "sdirk4", "newmark", "alpha", "esdirk4"})
+    schemes.push_back({scheme, fmt::format("{{type: petsc_newton, scheme: {}}}", scheme), dt});
+  return schemes;
+}
+
 struct BlockRun {
   RunSummary summary;
   std::map<std::string, std::vector<double>> probes;
