@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "contact/contact_law.hpp"
+#include "contact/secant_penalty.hpp"
 
 namespace fissure {
 
@@ -39,9 +40,14 @@ class ColliderShape {
   virtual double energy(const ContactLaw& law, const Point& position, const double* y) const = 0;
   // Implicit: the penalty energy at z; adds its gradient −k p n to `gradient` (3N, or null) and
   // k n nᵀ to each particle's 3×3 block in `blocks` (9N, or null); the normal forces' sum into
-  // `sums`.
+  // `sums`. With `start_depth` (the depths p0 at the step's start, N, or null) it takes the
+  // secant from p0 instead (contact/secant_penalty.hpp): energy G, gradient −G' n, block G'' n nᵀ.
   virtual double penalty(const ContactLaw& law, const Point& position, const double* z,
-                         double* gradient, double* blocks, ContactSums& sums) const = 0;
+                         const double* start_depth, double* gradient, double* blocks,
+                         ContactSums& sums) const = 0;
+  // The depth of each of the law's particles at y into `out` (N).
+  virtual void depths(const ContactLaw& law, const Point& position, const double* y,
+                      double* out) const = 0;
   // The contacts at y, for the step's lagged friction, each anchored at `anchor` (3N).
   virtual void lag(const ContactLaw& law, const Point& position, const double* y,
                    const double* anchor, std::vector<LaggedContact>& out) const = 0;
@@ -108,25 +114,41 @@ class ShapeContact : public ColliderShape {
     return sum;
   }
 
-  double penalty(const ContactLaw& law, const Point& position, const double* z, double* gradient,
-                 double* blocks, ContactSums& sums) const override {
+  double penalty(const ContactLaw& law, const Point& position, const double* z,
+                 const double* start_depth, double* gradient, double* blocks,
+                 ContactSums& sums) const override {
     double sum = 0, nx = 0, ny = 0, nz = 0;
 #pragma omp parallel for reduction(+ : sum, nx, ny, nz) schedule(static)
     for (int i = law.begin; i < law.end; ++i) {
       double n[3];
       const double p = self().penetration(position.data(), z + 3 * i, law.reach[i], n);
-      if (p <= 0) continue;
       const double k = law.stiffness[i];
-      sum += 0.5 * k * p * p;  // ½ k p²
-      nx += k * p * n[0], ny += k * p * n[1], nz += k * p * n[2];
+      // ½ k p², or the secant G from the step's start; force, and the block's coefficient
+      SecantPenalty e{0.5 * k * p * p, k * p, k};
+      if (start_depth)
+        e = secant_penalty(k, start_depth[i], p);
+      else if (p <= 0)
+        continue;
+      if (e.slope == 0 && e.curvature == 0) continue;
+      sum += e.energy;
+      nx += e.slope * n[0], ny += e.slope * n[1], nz += e.slope * n[2];
       if (gradient)
-        for (int a = 0; a < 3; ++a) gradient[3 * i + a] -= k * p * n[a];  // ∂p/∂z = −n
+        for (int a = 0; a < 3; ++a) gradient[3 * i + a] -= e.slope * n[a];  // ∂p/∂z = −n
       if (blocks)
         for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) blocks[9 * i + 3 * a + b] += k * n[a] * n[b];
+          for (int b = 0; b < 3; ++b) blocks[9 * i + 3 * a + b] += e.curvature * n[a] * n[b];
     }
     sums.normal[0] += nx, sums.normal[1] += ny, sums.normal[2] += nz;
     return sum;
+  }
+
+  void depths(const ContactLaw& law, const Point& position, const double* y,
+              double* out) const override {
+#pragma omp parallel for schedule(static)
+    for (int i = law.begin; i < law.end; ++i) {
+      double n[3];
+      out[i] = self().penetration(position.data(), y + 3 * i, law.reach[i], n);
+    }
   }
 
   void lag(const ContactLaw& law, const Point& position, const double* y, const double* anchor,

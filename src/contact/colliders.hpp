@@ -37,8 +37,10 @@ class Colliders {
   // on the stage's velocity (z − anchor)/span (integrators/load.hpp, PotentialStage); potential()
   // returns the penalty and friction energy at z and adds its gradient (3N, or null) and its
   // positive-semidefinite Hessian blocks (9N, or null); with a gradient it records the forces
-  // as add_forces does.
-  void begin_stage(const double* y, const double* anchor, double span, double elapsed);
+  // as add_forces does. With `secant` and no friction the penalty is the secant from the
+  // depths at y (contact/secant_penalty.hpp), each collider at its place at the step's start.
+  void begin_stage(const double* y, const double* anchor, double span, double elapsed,
+                   bool secant = false);
   double potential(const double* z, double* gradient, double* blocks);
   // The largest fraction α ≤ 1 of the update dz from z that keeps each particle within its
   // bound (ShapeContact::max_step), over distribute()'s range.
@@ -74,6 +76,7 @@ class Colliders {
     std::vector<double> reach;          // contact reach per particle
     std::array<double, 3> stage;        // implicit: position at the stage's end
     std::vector<LaggedContact> lagged;  // implicit: the contacts at the stage's start
+    std::vector<double> start_depth;    // implicit, secant: the depths at the step's start (N)
   };
   ContactLaw law(const State& c) const;
 

@@ -21,7 +21,7 @@ class ColliderLoad : public Load, public LoadPotential {
   void distribute(const Halo& halo) override;
   LoadPotential* potential() override { return this; }
   void begin_stage(const PotentialStage& s) override {
-    colliders_.begin_stage(s.start, s.anchor, s.span, s.elapsed);
+    colliders_.begin_stage(s.start, s.anchor, s.span, s.elapsed, s.secant);
   }
   double evaluate(const double* z, double* gradient, double* blocks) override {
     return colliders_.potential(z, gradient, blocks);

@@ -95,8 +95,9 @@ void ImplicitScheme::predict(const State& state, const std::vector<double>& acce
       // a_{n+1}). The left side is affine in z, A z + k, so ỹ = −k/A with k its value at z = 0.
       // B's acceleration a_B enters a_{n+1} as a_B/γ and is not carried into a_n: it changes the
       // velocity by h a_B, an impulse at the step's end. For Newmark the position then moves by
-      // h(v_n + v_{n+1})/2 and a convex B cannot gain energy: ΔK = −∇B(y_{n+1})·Δy ≤ −ΔB (Kane,
-      // Repetto, Ortiz & Marsden 1999). Generalized-α takes a_B at y_{n+1} (at z it created
+      // h(v_n + v_{n+1})/2, and with a_B contact's secant from y_n (contact_secant) the work
+      // M a_B·Δy is −ΔB exactly: the contact neither gains nor loses energy (a discrete
+      // gradient, Gonzalez 1996). Generalized-α takes a_B at y_{n+1} (at z it created
       // energy at every bounce): the equation gains (1 − α_m) a_B(y_{n+1})/γ, the gradient of
       // (1 − α_m)(1 − α_f)/γ B(y_n + (z − y_n)/(1 − α_f)).
       potential_weight_ = (1 - alpha_m_) * (1 - alpha_f_) / gamma_;
@@ -150,12 +151,14 @@ void ImplicitScheme::stage_velocity(const State& state, const std::vector<double
 std::vector<double> ImplicitScheme::guess(const State& state, double h) const {
   std::vector<double> z(state.position.size());
   if (kind_ == Kind::sdirk && stage_ > 0) {
-    // Y_i = ỹ + M⁻¹(F + f)(Y_i)/A, with M⁻¹(F + f) = V' + cV taken from the previous stage.
-    // (contact's share as this stage weighs it)
+    // Y_i = ỹ + M⁻¹(F + f)(Y_i)/A, with M⁻¹(F + f) = V' + cV taken from the previous stage,
+    // contact's share as this stage weighs it: V'_{i−1} holds a_B once, but the explicit first
+    // stage's a_n holds none, and after it a_B is the one at the last step's end
     const double* v = stage_velocity_[stage_ - 1].data();
     const double* a = stage_acceleration_[stage_ - 1].data();
     const double* b = stage_contact_.empty() ? nullptr : stage_contact_.data();
-    const double moved = potential_weight_ - 1;
+    const bool after_explicit = stage_ == 1 && tableau_->explicit_stage(0);
+    const double moved = potential_weight_ - (after_explicit ? 0 : 1);
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < z.size(); ++k)
       z[k] = target_[k] + (a[k] + damping_ * v[k] + (b ? moved * b[k] : 0.0)) / inertia_;

@@ -60,6 +60,12 @@ class ImplicitScheme {
   // an ESDIRK's implicit stages, which take B's share of the explicit first stage at their own
   // end point.
   double potential_weight() const { return potential_weight_; }
+  // Whether contact's penalty is taken as its secant from the step's start (Newmark, whose
+  // trapezoidal position update then keeps the energy through a contact it does not resolve:
+  // contact/secant_penalty.hpp) rather than at the stage's end point.
+  bool contact_secant() const {
+    return kind_ == Kind::newmark_alpha && alpha_m_ == 0 && alpha_f_ == 0;
+  }
   // Records the minimiser z of the stage last predicted (SDIRK; nothing for the others).
   // `contact`: −M⁻¹∇B where the stage takes B, 3N, or empty when the scene has no
   // potentials.

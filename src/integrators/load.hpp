@@ -27,12 +27,14 @@ enum class Booking { work, loss };
 
 // An implicit stage as a load's potential sees it: the positions at the step's start (3N), the
 // stage's velocity as the scheme makes it of the stage's positions z, (z − anchor)/span (3N and
-// seconds; span 0 for a static step), and the time from the step's start to the stage's end.
+// seconds; span 0 for a static step), the time from the step's start to the stage's end, and
+// whether contact takes its secant from the step's start (Newmark: ImplicitScheme::contact_secant).
 struct PotentialStage {
   const double* start;
   const double* anchor;
   double span;
   double elapsed;
+  bool secant = false;
 };
 
 // A load that implicit integrators take into the potential each step minimises

@@ -56,7 +56,7 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
         mapped[k] = state.position[k] + scale_ * (anchor[k] - state.position[k]);
     }
     const PotentialStage at_p{state.position.data(), scale_ != 1 ? mapped.data() : anchor.data(),
-                              scale_ * span, scale_ * stage.elapsed};
+                              scale_ * span, scale_ * stage.elapsed, scheme.contact_secant()};
     for (LoadPotential* p : potentials_) p->begin_stage(p->contact() ? at_p : stage);
   }
   cached_ = false;  // the potentials changed with the stage

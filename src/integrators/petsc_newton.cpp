@@ -194,7 +194,7 @@ Solver::Refresh refresh_reason(Solver& s) {
   if (!same_step_coefficient(s.system.inertia(), s.factor_inertia)) return Refreshes::step_size;
   if (s.system.tangent() != s.factor_tangent) return Refreshes::fallback;
   if (!s.preconditioner->follows_the_state()) return Refreshes::none;
-  if (contracted_slowly(s)) return Refreshes::convergence;
+  if (!s.krylov && contracted_slowly(s)) return Refreshes::convergence;
   if (s.iterations_since_refresh >= s.refresh_iterations) return Refreshes::convergence;
   if (s.krylov && s.norms.size() >= 2) {
     PetscInt its = 0;
@@ -433,7 +433,12 @@ void set_up_petsc(Solver& s, const PetscNewtonSettings& settings, const std::str
   s.preconditioner =
       std::make_unique<NewtonPreconditioner>(s.system, kind, s.options, settings.factor_precision);
   K krylov = settings.krylov;
-  if (krylov == K::automatic) krylov = kind == P::tangent ? K::none : K::cg;
+  // auto: the tangent's factor alone, which is the Newton matrix where it was made; but
+  // contact's Hessian changes with its active set (and with ESDIRK4's stage weights (γ +
+  // a_i1)/γ), which CG on the exact tangent follows with one factor as its preconditioner
+  // (docs/integrators.md, "Contact")
+  if (krylov == K::automatic)
+    krylov = kind == P::tangent && !s.system.has_contact() ? K::none : K::cg;
   s.krylov = krylov != K::none;
   s.reuse = settings.reuse_factor;
   s.refresh_contraction = settings.refresh_contraction;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "contact/colliders.hpp"
 #include "core/error.hpp"
@@ -20,10 +21,12 @@
 namespace fissure {
 namespace {
 
-// A 10 cm block on the plane z = 0 (48 particles), with `collider`, friction μ = 0.4.
-Scene scene_with(const std::string& collider) {
+// A 10 cm block on the plane z = 0 (48 particles), with `collider`, friction μ = 0.4 (or none:
+// the secant penalty is taken only without friction, Colliders::begin_stage).
+Scene scene_with(const std::string& collider, double friction = 0.4) {
   test::Block b{{0.1, 0.1, 0.1}, 0.05, 1e6, 1e6};
-  b.scene = "contact: {friction: 0.4}\ncolliders:\n  - " + collider + "\n";
+  b.scene =
+      "contact: {friction: " + std::to_string(friction) + "}\ncolliders:\n  - " + collider + "\n";
   return test::block_scene(b);
 }
 
@@ -46,6 +49,23 @@ Points pressed(const Scene& scene) {
   return p;
 }
 
+// For the secant penalty (contact/secant_penalty.hpp), start and end depths in each of its
+// branches, taken in turn by the bottom layer's particles: pressed 2 mm in at the start and
+// moving ±0.5 mm, entering from a 1 mm gap to 0.5 mm deep, leaving from 0.2 mm deep to a 0.3 mm
+// gap.
+Points crossing(const Scene& scene) {
+  Points p = pressed(scene);
+  const double start[3] = {-2e-3, 1e-3, -2e-4}, end[3] = {0, -1.5e-3, 5e-4};
+  int bottom = 0;
+  for (std::size_t i = 0; i < p.start.size() / 3; ++i) {
+    const double z = scene.particles.reference[3 * i + 2];
+    const int branch = z < 0.025 ? bottom++ % 3 : 0;
+    p.end[3 * i + 2] += z + start[branch] - p.start[3 * i + 2] + end[branch];
+    p.start[3 * i + 2] = z + start[branch];
+  }
+  return p;
+}
+
 struct Evaluation {
   double energy;
   std::vector<double> gradient, blocks;
@@ -57,13 +77,14 @@ Evaluation evaluate(Colliders& c, const std::vector<double>& z) {
 }
 
 // Checks the gradient and Hessian blocks at the pressed end point against central differences
-// along each particle's axes; `exact` whether the blocks are the whole Hessian. Returns the
-// number of particles in contact.
-int check_against_differences(const std::string& collider, bool exact) {
-  const Scene scene = scene_with(collider);
+// along each particle's axes; `exact` whether the blocks are the whole Hessian; `secant` the
+// penalty's secant from the start (with crossing() points). Returns the number of particles in
+// contact.
+int check_against_differences(const std::string& collider, bool exact, bool secant = false) {
+  const Scene scene = scene_with(collider, secant ? 0.0 : 0.4);
   Colliders colliders(scene);
-  const Points p = pressed(scene);
-  colliders.begin_stage(p.start.data(), p.start.data(), 1e-3, 1e-3);
+  const Points p = secant ? crossing(scene) : pressed(scene);
+  colliders.begin_stage(p.start.data(), p.start.data(), 1e-3, 1e-3, secant);
   const Evaluation at = evaluate(colliders, p.end);
   const double eps = 1e-9;
   int touching = 0;
@@ -120,6 +141,14 @@ TEST(ColliderPotential, BoxGradientAndHessianMatchDifferences) {
 
 TEST(ColliderPotential, SphereGradientMatchesAndHessianIsItsProjection) {
   EXPECT_GE(check_against_differences("{sphere: {center: [0.05, 0.05, -1], radius: 1}}", false), 4);
+}
+
+TEST(ColliderPotential, SecantPenaltyGradientAndHessianMatchDifferences) {
+  EXPECT_GE(check_against_differences("{plane: {point: [0, 0, 0], normal: [0, 0, 1]}}", true, true),
+            8);
+  EXPECT_GE(check_against_differences("{box: {min: [-1, -1, -1], max: [1, 1, 0]}}", true, true), 8);
+  EXPECT_GE(
+      check_against_differences("{sphere: {center: [0.05, 0.05, -1], radius: 1}}", false, true), 4);
 }
 
 // At rest in contact the penalty holds nothing and friction is zero: the start as sampled (the

@@ -11,8 +11,10 @@
 // metres.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "support/contact_block.hpp"
 
@@ -59,31 +61,49 @@ TEST_P(ContactBlocks, TouchingTheGroundAsSampledRests) {
 // penalty's stored energy is the rest. The explicit integrators resolve the contact and the
 // block bounces. Backward Euler damps the impact's stiff modes (ω h ≫ 1)
 // and it settles on the plane within the run; the others damp less and may still be bouncing.
-// Newmark, which takes the contact as an impulse at the step's end, never gains: K + Π + U stays
-// below the work but for the nonlinear share of the elastic energy and Newton's tolerance.
+// Newmark, which takes the contact's secant over the step as an impulse at its end, keeps
+// K + Π + U at the work but for the nonlinear share of the elastic energy and Newton's
+// tolerance, and bounces back.
+// How far the top rises again after its lowest point, over how far it fell to it.
+double rebound(const std::vector<double>& top) {
+  const auto lowest = std::min_element(top.begin(), top.end());
+  return (*std::max_element(lowest, top.end()) - *lowest) / (top.front() - *lowest);
+}
+
 TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   const Integrator& integrator = GetParam();
   // ARKODE's error control takes the contacts at their own step (217 s to 0.3 s here): to the
   // first rebound only, 0.1 s (the bottom particles reach the plane at about 0.07 s)
   const bool arkode = integrator.name.rfind("arkode", 0) == 0;
   const BlockRun r = run_block(glass_block(0.03, arkode ? 0.1 : 0.3, integrator.yaml), integrator);
+  // SDIRK4 has no energy bound at a contact it does not resolve (not algebraically stable; its
+  // stage coefficients up to 125/16 amplify the Newton error) and gains on the bounces: at
+  // 0.298 s its kinetic energy reached 1.11 times the energy put in, and the growth check's
+  // stop, a clear message, is what it must give then
+  if (integrator.name == "sdirk4" && !r.stopped.empty()) {
+    std::printf("sdirk4: %s\n", r.stopped.c_str());
+    EXPECT_NE(r.stopped.find("energy grew"), std::string::npos) << r.stopped;
+    EXPECT_NE(r.stopped.find("sdirk4 and esdirk4 may"), std::string::npos) << r.stopped;
+    return;
+  }
   ASSERT_EQ(r.stopped, "");
   const auto& k = r.probes.at("kinetic_energy");
   const auto& pi = r.probes.at("elastic_energy");
   const auto& u = r.probes.at("stored_energy");
   const auto& w = r.probes.at("gravity_work");
-  double worst = 0, worst_total = -1;
+  double worst = 0, worst_total = 0;
   for (std::size_t row = 1; row < k.size(); ++row) {
     worst = std::max(worst, (k[row] + pi[row]) / w[row] - 1);
-    worst_total = std::max(worst_total, (k[row] + pi[row] + u[row]) / w[row] - 1);
+    worst_total = std::max(worst_total, std::abs((k[row] + pi[row] + u[row]) / w[row] - 1));
   }
   const double final_speed2 = 2 * k.back() / (2200 * 1e-3);
   const auto& top = r.probes.at("top.pos_z");
   const double height = top.back(), fallen = top.front() - top.back();
   std::printf(
-      "%s: dropped block, (K + Π)/W − 1 at most %.3g, (K + Π + U)/W − 1 at most %.3g, "
-      "final kinetic %.3g J, fell %.6f m, balance error %.3g\n",
-      integrator.name.c_str(), worst, worst_total, k.back(), fallen, r.summary.energy_drift);
+      "%s: dropped block, (K + Π)/W − 1 at most %.3g, |(K + Π + U)/W − 1| at most %.3g, "
+      "final kinetic %.3g J, fell %.6f m, rose %.3g of it, balance error %.3g\n",
+      integrator.name.c_str(), worst, worst_total, k.back(), fallen, rebound(top),
+      r.summary.energy_drift);
   EXPECT_EQ(r.summary.status, "completed");
   // symplectic Euler is first order: at dt: auto a bottom particle's contact has ω h ≈ 0.32 and
   // the energy it keeps differs from K + Π + U by up to about ω h/2 of the contact's energy
@@ -91,7 +111,8 @@ TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   // 7e-5)
   EXPECT_LT(worst, integrator.name == "symplectic_euler" ? 0.16 : 0.01);
   if (integrator.name == "newmark") {
-    EXPECT_LT(worst_total, 1e-6);
+    EXPECT_LT(worst_total, 0.01);  // measured 5.2e-3
+    EXPECT_GT(rebound(top), 0.5);  // measured 0.95
   } else if (integrator.name == "backward_euler") {
     // at rest on the plane: its bottom particles' centres within their radius of it (the block
     // stops between 0.03 − r and 0.03 below where it started, r = ½ V^(1/3) ≤ 1.25 cm here)
