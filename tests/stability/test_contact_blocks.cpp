@@ -111,7 +111,7 @@ TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   // 7e-5)
   EXPECT_LT(worst, integrator.name == "symplectic_euler" ? 0.16 : 0.01);
   if (integrator.name == "newmark") {
-    EXPECT_LT(worst_total, 0.01);  // measured 5.2e-3
+    EXPECT_LT(worst_total, 0.01);  // measured 5.7e-3
     EXPECT_GT(rebound(top), 0.5);  // measured 0.95
   } else if (integrator.name == "backward_euler") {
     // at rest on the plane: its bottom particles' centres within their radius of it (the block
