@@ -180,10 +180,13 @@ double bounded_step(Solver& s, Vec x, Vec y) {
 }
 
 // Whether the last Newton iteration reduced |r| by less than refresh_contraction (above the
-// round-off floor, where a contraction means nothing).
+// round-off floor, where a contraction means nothing), with the factor alone making the Newton
+// step. Under a Krylov method the step solves the exact tangent: a slow contraction there is the
+// problem's nonlinearity (contact's active set), which neither a new factor nor a more precise
+// one mends; a stale factor shows in the Krylov iterations instead.
 bool contracted_slowly(const Solver& s) {
   const std::size_t k = s.norms.size();
-  return k >= 2 && s.norms[k - 2] > 10 * s.floor &&
+  return !s.krylov && k >= 2 && s.norms[k - 2] > 10 * s.floor &&
          s.norms[k - 1] > s.refresh_contraction * s.norms[k - 2];
 }
 
@@ -194,7 +197,7 @@ Solver::Refresh refresh_reason(Solver& s) {
   if (!same_step_coefficient(s.system.inertia(), s.factor_inertia)) return Refreshes::step_size;
   if (s.system.tangent() != s.factor_tangent) return Refreshes::fallback;
   if (!s.preconditioner->follows_the_state()) return Refreshes::none;
-  if (!s.krylov && contracted_slowly(s)) return Refreshes::convergence;
+  if (contracted_slowly(s)) return Refreshes::convergence;
   if (s.iterations_since_refresh >= s.refresh_iterations) return Refreshes::convergence;
   if (s.krylov && s.norms.size() >= 2) {
     PetscInt its = 0;

@@ -60,8 +60,9 @@ Points crossing(const Scene& scene) {
   for (std::size_t i = 0; i < p.start.size() / 3; ++i) {
     const double z = scene.particles.reference[3 * i + 2];
     const int branch = z < 0.025 ? bottom++ % 3 : 0;
-    p.end[3 * i + 2] += z + start[branch] - p.start[3 * i + 2] + end[branch];
-    p.start[3 * i + 2] = z + start[branch];
+    const double shift = z + start[branch] - p.start[3 * i + 2];  // from pressed()'s start
+    p.start[3 * i + 2] += shift;
+    p.end[3 * i + 2] += shift + end[branch];
   }
   return p;
 }

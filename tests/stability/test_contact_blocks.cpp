@@ -56,6 +56,12 @@ TEST_P(ContactBlocks, TouchingTheGroundAsSampledRests) {
   EXPECT_GT(largest(r.probes.at("stored_energy")), 0);  // it does press on the ground
 }
 
+// How far the top rises again after its lowest point, over how far it fell to it.
+double rebound(const std::vector<double>& top) {
+  const auto lowest = std::min_element(top.begin(), top.end());
+  return (*std::max_element(lowest, top.end()) - *lowest) / (top.front() - *lowest);
+}
+
 // Dropped from 3 cm it hits the ground at √(2 g h) = 0.77 m/s. Whatever the scheme, K + Π
 // never exceeds the potential energy it fell through (gravity_work) by more than 1%; the
 // penalty's stored energy is the rest. The explicit integrators resolve the contact and the
@@ -64,11 +70,6 @@ TEST_P(ContactBlocks, TouchingTheGroundAsSampledRests) {
 // Newmark, which takes the contact's secant over the step as an impulse at its end, keeps
 // K + Π + U at the work but for the nonlinear share of the elastic energy and Newton's
 // tolerance, and bounces back.
-// How far the top rises again after its lowest point, over how far it fell to it.
-double rebound(const std::vector<double>& top) {
-  const auto lowest = std::min_element(top.begin(), top.end());
-  return (*std::max_element(lowest, top.end()) - *lowest) / (top.front() - *lowest);
-}
 
 TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   const Integrator& integrator = GetParam();
@@ -91,18 +92,21 @@ TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   const auto& pi = r.probes.at("elastic_energy");
   const auto& u = r.probes.at("stored_energy");
   const auto& w = r.probes.at("gravity_work");
-  double worst = 0, worst_total = 0;
+  double worst = 0, worst_total = 0, gain_total = -1;
   for (std::size_t row = 1; row < k.size(); ++row) {
+    const double total = (k[row] + pi[row] + u[row]) / w[row] - 1;
     worst = std::max(worst, (k[row] + pi[row]) / w[row] - 1);
-    worst_total = std::max(worst_total, std::abs((k[row] + pi[row] + u[row]) / w[row] - 1));
+    worst_total = std::max(worst_total, std::abs(total));
+    gain_total = std::max(gain_total, total);
   }
   const double final_speed2 = 2 * k.back() / (2200 * 1e-3);
   const auto& top = r.probes.at("top.pos_z");
   const double height = top.back(), fallen = top.front() - top.back();
   std::printf(
-      "%s: dropped block, (K + Π)/W − 1 at most %.3g, |(K + Π + U)/W − 1| at most %.3g, "
-      "final kinetic %.3g J, fell %.6f m, rose %.3g of it, balance error %.3g\n",
-      integrator.name.c_str(), worst, worst_total, k.back(), fallen, rebound(top),
+      "%s: dropped block, (K + Π)/W − 1 at most %.3g, (K + Π + U)/W − 1 at most %.3g and at "
+      "most %.3g in magnitude, final kinetic %.3g J, fell %.6f m, rose %.3g of it, balance "
+      "error %.3g\n",
+      integrator.name.c_str(), worst, gain_total, worst_total, k.back(), fallen, rebound(top),
       r.summary.energy_drift);
   EXPECT_EQ(r.summary.status, "completed");
   // symplectic Euler is first order: at dt: auto a bottom particle's contact has ω h ≈ 0.32 and
@@ -111,8 +115,13 @@ TEST_P(ContactBlocks, DroppedFallsHitsAndSettles) {
   // 7e-5)
   EXPECT_LT(worst, integrator.name == "symplectic_euler" ? 0.16 : 0.01);
   if (integrator.name == "newmark") {
-    EXPECT_LT(worst_total, 0.01);  // measured 5.7e-3
-    EXPECT_GT(rebound(top), 0.5);  // measured 0.95
+    // the secant keeps the contacts' energy exactly; the trapezoidal rule keeps the elastic one
+    // only where it is quadratic, and Newton stops at its tolerance: a gain of at most 0.1% of
+    // the energy fallen through (measured 3.5e-4) and a change of at most 1% (measured 5.7e-3;
+    // the scene's target is 5%)
+    EXPECT_LT(gain_total, 1e-3);
+    EXPECT_LT(worst_total, 0.01);
+    EXPECT_GT(rebound(top), 0.5);  // measured 0.97
   } else if (integrator.name == "backward_euler") {
     // at rest on the plane: its bottom particles' centres within their radius of it (the block
     // stops between 0.03 − r and 0.03 below where it started, r = ½ V^(1/3) ≤ 1.25 cm here)
