@@ -22,6 +22,32 @@ SelfContact::SelfContact(const Scene& scene, const Model& model)
   // largest reach (about 0.1 λ on tet-sampled bodies, r = ½V^(1/3)) relative to each other. A
   // larger skin lengthens every evaluation and every rebuild; a smaller one rebuilds more often.
   skin_ = 0.3 * reach_;
+  start_at_rest(scene.particles.reference.data());
+}
+
+void SelfContact::start_at_rest(const double* y) {
+  if (radius_.empty()) return;
+  build_list(y);
+  // Each pair without a bond closer than r_i + r_j at load caps both radii at half its distance,
+  // so that r_i + r_j ≤ d for it; capping only shortens reaches, so no other pair comes to
+  // overlap. Pairs of a broken bond are left out, so that a resumed run, whose model holds the
+  // bonds broken since, caps the same radii.
+  std::vector<double> capped = radius_;
+  const int n = static_cast<int>(radius_.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int s = list_start_[i]; s < list_start_[i + 1]; ++s) {
+      if (candidates_[s].bond >= 0) continue;
+      const int j = candidates_[s].j;
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += std::pow(y[3 * i + k] - y[3 * j + k], 2);
+      const double distance = std::sqrt(d2);
+      if (distance < radius_[i] + radius_[j]) capped[i] = std::min(capped[i], 0.5 * distance);
+    }
+  radius_ = std::move(capped);
+  // The first evaluation builds the list afresh, at its own positions.
+  built_at_.clear();
+  builds_ = 0;
 }
 
 void SelfContact::build_grid(const double* y) {
@@ -172,9 +198,8 @@ void SelfContact::split_rows() {
   split_revision_ = model_.revision();
 }
 
-void SelfContact::add_forces(const double* y, double* f) {
+bool SelfContact::update_list(const double* y) {
   const int n = static_cast<int>(radius_.size());
-  if (n == 0) return;
   // One pass for both: whether y is finite, and how far the particles moved since the list was
   // built, measured so that moving all together does not count. A pair's separation changed by
   // |Δ_i − Δ_j| = |(Δ_i − u) − (Δ_j − u)| ≤ 2 max_k |Δ_k − u| for any common vector u, so the
@@ -204,17 +229,22 @@ void SelfContact::add_forces(const double* y, double* f) {
     moved = std::max(moved, d2);
   }
   // A non-finite state has no geometry to search; the run loop stops on it after this step.
-  if (!finite) return;
+  if (!finite) return false;
   double half_diagonal = 0;  // squared
   for (int k = 0; k < 3; ++k) half_diagonal += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
   if (!have_list || std::min(moved, half_diagonal) > 0.25 * skin_ * skin_)
     build_list(y);
   else if (model_.revision() != split_revision_)
     split_rows();
+  return true;
+}
 
+template <class Pair, class Finish>
+void SelfContact::for_each_touching(const double* y, Pair&& pair, Finish&& finish) const {
+  const int n = static_cast<int>(radius_.size());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    double force[3] = {0, 0, 0};
+    double sum[3] = {0, 0, 0};
     for (int s = list_start_[i]; s < touching_end_[i]; ++s) {
       const int j = candidates_[s].j;
       double d[3];
@@ -222,11 +252,84 @@ void SelfContact::add_forces(const double* y, double* f) {
       const double distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       const double reach = radius_[i] + radius_[j];
       if (distance >= reach || distance == 0) continue;
-      const double push = 0.5 * (stiffness_[i] + stiffness_[j]) * (reach - distance);
-      for (int k = 0; k < 3; ++k) force[k] += push * d[k] / distance;
+      pair(i, j, d, distance, reach - distance, 0.5 * (stiffness_[i] + stiffness_[j]), sum);
     }
-    for (int k = 0; k < 3; ++k) f[3 * i + k] += force[k];
+    finish(i, sum);
   }
+}
+
+void SelfContact::add_forces(const double* y, double* f) {
+  if (radius_.empty() || !update_list(y)) return;
+  for_each_touching(
+      y,
+      [](int, int, const double* d, double distance, double overlap, double k, double* push) {
+        for (int c = 0; c < 3; ++c) push[c] += k * overlap * d[c] / distance;  // k (d_c − d) n
+      },
+      [&](int i, const double* push) {
+        for (int c = 0; c < 3; ++c) f[3 * i + c] += push[c];
+      });
+}
+
+double SelfContact::potential(const double* z, double* gradient, double* blocks) {
+  if (radius_.empty() || !update_list(z)) return 0;
+  std::vector<double> row_energy(radius_.size(), 0.0);
+  // Per pair ½ k p², p = d_c − d the overlap; each row takes half, as both rows visit the pair.
+  // ∂/∂y_i = −k p n (the push's negative); the Hessian's (i, i) block is k n nᵀ + k (p/d)
+  // (n nᵀ − I), of which the projection keeps k n nᵀ (the second term is negative semidefinite).
+  for_each_touching(
+      z,
+      [&](int i, int, const double* d, double distance, double overlap, double k, double* push) {
+        const double n[3] = {d[0] / distance, d[1] / distance, d[2] / distance};
+        row_energy[i] += 0.25 * k * overlap * overlap;
+        for (int c = 0; c < 3; ++c) push[c] += k * overlap * n[c];
+        if (blocks)
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) blocks[9 * i + 3 * a + b] += k * n[a] * n[b];
+      },
+      [&](int i, const double* push) {
+        if (gradient)
+          for (int c = 0; c < 3; ++c) gradient[3 * i + c] -= push[c];
+      });
+  double energy = 0;
+  for (double e : row_energy) energy += e;
+  return energy;
+}
+
+void SelfContact::add_coupling(const double* z, const double* v, double* out) const {
+  if (radius_.empty() || built_at_.empty()) return;
+  // −k n nᵀ v_j for each partner j of row i
+  for_each_touching(
+      z,
+      [&](int, int j, const double* d, double distance, double, double k, double* sum) {
+        const double n[3] = {d[0] / distance, d[1] / distance, d[2] / distance};
+        const double along = n[0] * v[3 * j] + n[1] * v[3 * j + 1] + n[2] * v[3 * j + 2];
+        for (int c = 0; c < 3; ++c) sum[c] -= k * along * n[c];
+      },
+      [&](int i, const double* sum) {
+        for (int c = 0; c < 3; ++c) out[3 * i + c] += sum[c];
+      });
+}
+
+double SelfContact::max_step(const double* dz) const {
+  const int n = static_cast<int>(radius_.size());
+  // The update's largest relative motion, measured as update_list measures it.
+  double moved = 0;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+#pragma omp parallel for schedule(static) reduction(max : moved, hi[:3]) reduction(min : lo[:3])
+  for (int i = 0; i < n; ++i) {
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      d2 += dz[3 * i + k] * dz[3 * i + k];
+      lo[k] = std::min(lo[k], dz[3 * i + k]);
+      hi[k] = std::max(hi[k], dz[3 * i + k]);
+    }
+    moved = std::max(moved, d2);
+  }
+  double half_diagonal = 0;
+  for (int k = 0; k < 3; ++k) half_diagonal += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  const double largest = std::sqrt(std::min(moved, half_diagonal));
+  return largest > 0.5 * skin_ ? 0.5 * skin_ / largest : 1.0;
 }
 
 }  // namespace fissure

@@ -20,6 +20,11 @@
 // changes only the order of summation. That order does not depend on when the list was built,
 // so the forces are a function of the positions and the intact bonds alone (a resumed run, which
 // builds its list afresh, adds in the same order as an uninterrupted one).
+//
+// Bodies may start touching as sampled (a block on another): a pair of particles with no bond
+// between them (in the families) closer than r_i + r_j at load caps both radii at half its
+// distance, so that every pair starts without force and presses only when it moves closer (the
+// colliders' rule, contact/colliders.hpp).
 #include <cstddef>
 #include <vector>
 
@@ -32,14 +37,39 @@ class SelfContact {
  public:
   SelfContact(const Scene& scene, const Model& model);
   // Adds the repulsion k (d_c − d) n between every unbonded pair closer than d_c = r_i + r_j to
-  // f (3N), with r = ½V^(1/3) and k the mean of the two particles' contact stiffness.
+  // f (3N), with r = ½V^(1/3) (capped where the pair started closer, above) and k the mean of the
+  // two particles' contact stiffness.
   void add_forces(const double* y, double* f);
+
+  // The same repulsion as a potential, for implicit integrators (docs/integrators.md, "Contact"):
+  // B(z) = Σ over unbonded pairs ½ k (d_c − d)² [J], returned; adds ∇B to `gradient` (3N, or
+  // null) and, per particle i, the diagonal block Σ_j k n nᵀ of its positive-semidefinite
+  // Hessian to `blocks` (9 per particle, or null). The Hessian's pair blocks (−k n nᵀ between i and
+  // j) act through add_coupling.
+  double potential(const double* z, double* gradient, double* blocks);
+  // Adds the off-diagonal part of that Hessian times v to out (3N): −Σ_j k n nᵀ v_j for each i,
+  // at z (which potential() was last evaluated at or near: its Verlet list).
+  void add_coupling(const double* z, const double* v, double* out) const;
+  // The largest fraction α ≤ 1 of the update dz that keeps every particle within skin/2 of a
+  // common motion (as the list's rebuild rule measures it), so that pairs move by at most the
+  // skin relative to each other and none passes through another's reach within one update.
+  double max_step(const double* dz) const;
 
   // The Verlet list's skin [m] and how many times the list has been built (for tests).
   double skin() const { return skin_; }
   std::size_t builds() const { return builds_; }
 
  private:
+  // Rebuilds the Verlet list if the particles moved more than skin/2 since it was built, or
+  // re-splits its rows if bonds changed; false (and nothing done) if y is not finite.
+  bool update_list(const double* y);
+  // Calls pair(i, j, d, |d|, overlap, k, sum) for every touching pair within reach, row by row
+  // in increasing j (each unordered pair twice), d = y_i − y_j, then finish(i, sum)
+  // with the row's 3-vector sum (zero at the row's start); rows in parallel.
+  template <class Pair, class Finish>
+  void for_each_touching(const double* y, Pair&& pair, Finish&& finish) const;
+  // Caps the radii of the pairs that overlap at y (the reference positions): see above.
+  void start_at_rest(const double* y);
   void build_grid(const double* y);
   void build_list(const double* y);
   void split_rows();

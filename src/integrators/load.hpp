@@ -39,8 +39,9 @@ struct PotentialStage {
 
 // A load that implicit integrators take into the potential each step minimises
 // (docs/integrators.md, "Contact"), evaluated at every iterate z instead of once at the step's
-// start: its energy, its gradient and the positive-semidefinite part of its Hessian as 3×3 blocks
-// per particle (what the factor and the Newton matrix take).
+// start: its energy, its gradient and the positive-semidefinite part of its Hessian, as 3×3
+// blocks per particle (what the factor takes) and, for a pair potential, the product of the blocks
+// that couple particles (what the Newton matrix adds).
 class LoadPotential {
  public:
   virtual ~LoadPotential() = default;
@@ -49,6 +50,11 @@ class LoadPotential {
   // Its energy at z [J], this rank's rows; adds its gradient to `gradient` (3N, or null) and its
   // Hessian blocks to `blocks` (9 per particle, row-major, or null).
   virtual double evaluate(const double* z, double* gradient, double* blocks) = 0;
+  // Adds the product of its Hessian's blocks between particles (a pair potential's) with v to
+  // out (3N), at z, the point evaluate() last took its blocks at; nothing for a potential whose
+  // particles act each on their own (the blocks hold its whole Hessian; couples() false).
+  virtual void add_coupling(const double*, const double*, double*) const {}
+  virtual bool couples() const { return false; }
   // The largest fraction α ≤ 1 of the update dz from z the load admits (1: any); this rank's
   // rows.
   virtual double max_step(const double*, const double*) const { return 1; }

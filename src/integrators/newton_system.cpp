@@ -21,7 +21,11 @@ NewtonSystem::NewtonSystem(Dynamics& dynamics, Tangent tangent)
   force_.resize(mass_.size());
   external_.resize(mass_.size());
   masked_.resize(mass_.size());
-  for (const LoadPotential* p : potentials_) has_contact_ = has_contact_ || p->contact();
+  for (const LoadPotential* p : potentials_) {
+    has_contact_ = has_contact_ || p->contact();
+    has_coupling_ = has_coupling_ || p->couples();
+  }
+  if (has_coupling_) coupling_.resize(mass_.size());
   if (!potentials_.empty()) {
     smooth_gradient_.resize(mass_.size());
     contact_gradient_.resize(mass_.size());
@@ -126,6 +130,20 @@ bool NewtonSystem::add_potential_blocks(const double* z, std::vector<double>& bl
   for (LoadPotential* load : potentials_)
     if (!load->contact()) load->evaluate(z, nullptr, blocks.data());
   return true;
+}
+
+void NewtonSystem::add_coupling(const double* v, double* out) {
+  if (!has_coupling_) return;
+  // the pair blocks of ∇²S⁺ + w s² ∇²B⁺ at the linearization point, B's at p(z)
+  std::fill(coupling_.begin(), coupling_.end(), 0.0);
+  const double* p = has_contact_ ? potential_point(linearization_.data(), mapped_) : nullptr;
+  for (const LoadPotential* load : potentials_)
+    if (load->contact()) load->add_coupling(p, v, coupling_.data());
+  const double factor = weight_ * scale_ * scale_;
+  for (std::size_t k = first_; k < end_; ++k) coupling_[k] *= factor;
+  for (const LoadPotential* load : potentials_)
+    if (!load->contact()) load->add_coupling(linearization_.data(), v, coupling_.data());
+  for (std::size_t k = first_; k < end_; ++k) out[k] += coupling_[k];
 }
 
 void NewtonSystem::potential_acceleration(const double* z, std::vector<double>& out) {
@@ -248,6 +266,7 @@ void NewtonSystem::apply(const double* v, double* out) {
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
           out[3 * i + a] += blocks_[9 * i + 3 * a + b] * masked_[3 * i + b];
+    add_coupling(masked_.data(), out);
   }
 #pragma omp parallel for schedule(static)
   for (std::size_t k = first_; k < end_; ++k)

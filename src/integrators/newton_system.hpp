@@ -5,7 +5,8 @@
 // (S the smooth potentials, B contact's: LoadPotential::contact; w and s the scheme's
 // ImplicitScheme::potential_weight and potential_scale), its gradient (the residual) and the
 // product of its Hessian A M + K + ∇²S⁺ + w s² ∇²B⁺ with a vector (matrix-free; ∇²S⁺, ∇²B⁺ the
-// loads' positive-semidefinite blocks), with the particles a constraint
+// loads' positive-semidefinite Hessians: blocks per particle, and for a pair potential the
+// blocks between particles), with the particles a constraint
 // holds eliminated (their unknowns fixed at the value they must take). The energy and the forces at
 // a point come from one pass over the bonds and are kept, so that a line search asking for the
 // objective and then the residual at the same point pays once.
@@ -95,14 +96,19 @@ class NewtonSystem {
   // gradients into smooth_, contact_ and their gradients, unless z is the point they were computed
   // at and the model has not changed since (Model::revision).
   void evaluate(const double* z, long& passes);
+  // out += the potentials' coupling blocks (LoadPotential::add_coupling) times v, at the
+  // linearization point.
+  void add_coupling(const double* v, double* out);
 
   Dynamics& dynamics_;
   std::vector<LoadPotential*> potentials_;
-  bool has_contact_ = false;             // some potential is contact's
-  double weight_ = 1, scale_ = 1;        // w and s of the stage
-  std::vector<double> origin_;           // y_n, for p(z) where s ≠ 1
-  std::vector<double> mapped_;           // scratch: p(z)
-  double smooth_ = 0, contact_ = 0;      // S and B at point_
+  bool has_contact_ = false;         // some potential is contact's
+  bool has_coupling_ = false;        // some potential couples particles (LoadPotential::couples)
+  std::vector<double> coupling_;     // scratch: the coupling blocks' product
+  double weight_ = 1, scale_ = 1;    // w and s of the stage
+  std::vector<double> origin_;       // y_n, for p(z) where s ≠ 1
+  std::vector<double> mapped_;       // scratch: p(z)
+  double smooth_ = 0, contact_ = 0;  // S and B at point_
   std::vector<double> smooth_gradient_;  // ∇S and ∇B at point_ (3N, when there are potentials)
   std::vector<double> contact_gradient_;
   std::vector<double> blocks_;  // ∇²S⁺ + w s² ∇²B⁺ at linearization_, 9 per particle

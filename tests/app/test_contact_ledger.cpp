@@ -32,9 +32,12 @@ std::string lattice(int n, double spacing, double vx) {
 // self-contact penalty k p (k = stiffness × κ × V^(1/3), docs/config.md) acts, and with the
 // reduced mass m/2 the overlap grows as p = (u/Ω) sin Ω(t − t0), u = 2v0, Ω = √(2k/m). The run
 // ends at Ω(T − t0) = 1 rad, before the deepest overlap, so p rises monotonically. contact_loss
-// books −Σ F(y_{n+1})·Δy = Σ k p_{n+1} Δp_n per pair, the right-end sum of ∫ k p dp: it exceeds
-// ½ k p(T)² by ½ k Σ Δp_n² ∈ [0, ½ k u h p(T)] (|Δp_n| ≤ u h, Σ Δp_n = p(T)). At Ω h = 1e-3
-// that bound is 1.2e-3 of the penalty energy.
+// books −½ Σ (F(y_n) + F(y_{n+1}))·Δy per pair, the trapezoidal rule on ∫ k p dp: exactly
+// ½ k (p_{n+1}² − p_n²) on each step in contact, and on the step the pair enters, from a gap
+// g to p, ½ k p (p + g) where ½ k p² was stored: ½ k p g ≤ k (u h)²/8 more (p + g ≤ u h). So it
+// exceeds ½ k p(T)² by at most that, 3.5e-7 of it at Ω h = 1e-3 for the two contacts together;
+// a right-end sum (F(y_{n+1}) alone) would exceed it by ½ k Σ Δp_n², about 6e-4 of it here, and a
+// left-end sum fall short as much.
 // Two particles of volume V at (x, 0, 0) and (x, V^(1/3), 0), moving at (vx, 0, 0).
 std::string pair(double x, double volume, double vx) {
   return fmt::format("{0} 0 0 {1} {2} 0 0\n{0} {3} 0 {1} {2} 0 0\n", x, volume, vx,
@@ -68,7 +71,7 @@ TEST(ContactLedger, ContactLossIsThePenaltyEnergyOfTheOverlap) {
       size - (start + columns.at("b.disp_x").back() - columns.at("a.disp_x").back());
   const double penalty = 2 * 0.5 * k * overlap * overlap;  // two contacts
   const double booked = run.energy.at("contact_loss");
-  const double bound = 2 * 0.5 * k * u * h * overlap;
+  const double bound = 2 * k * (u * h) * (u * h) / 8;
   std::printf(
       "overlap %.6e m (analytic %.6e m): contact_loss %.6e J, 1/2 k p^2 %.6e J, "
       "excess %.3e of it (bound %.3e)\n",

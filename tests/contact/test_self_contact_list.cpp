@@ -13,9 +13,12 @@
 #include "contact/self_contact.hpp"
 #include "model/model.hpp"
 #include "scene/config.hpp"
+#include "support/contact_sizes.hpp"
 
 namespace fissure {
 namespace {
+
+using test::ContactSizes;
 
 // Two blocks of separate bodies overlapping by 0.02 m in x (no bonds between them).
 const char* kTwoBlocks =
@@ -33,28 +36,14 @@ bool bonded(const Scene& scene, const Model& model, int i, int j) {
   return false;
 }
 
-// What docs/config.md (contact) gives each particle, computed here from the scene's volumes and
-// kTwoBlocks' bulk moduli rather than by contact_particles: its radius r = ½V^(1/3) and its
-// penalty stiffness k = contact.stiffness × κ × V^(1/3), contact.stiffness 1 by default.
-struct ContactSizes {
-  std::vector<double> radius, stiffness;
-};
 ContactSizes documented_sizes(const Scene& scene) {
-  const double bulk_modulus[2] = {1.0e6, 2.0e6};
-  ContactSizes c;
-  for (int i = 0; i < scene.particles.count(); ++i) {
-    const double size = std::cbrt(scene.particles.volume[i]);
-    c.radius.push_back(0.5 * size);
-    c.stiffness.push_back(bulk_modulus[scene.particles.body[i]] * size);
-  }
-  return c;
+  return test::documented_sizes(scene, {1.0e6, 2.0e6});  // kTwoBlocks' bulk moduli
 }
 
 // Every pair, the formula of docs/config.md (contact.self): k (r_i + r_j − d) n, k the mean of
 // the two particles' stiffness, pairs bonded by an intact bond left out.
-std::vector<double> brute_force(const Scene& scene, const Model& model,
+std::vector<double> brute_force(const Scene& scene, const ContactSizes& c, const Model& model,
                                 const std::vector<double>& y) {
-  const ContactSizes c = documented_sizes(scene);
   const int n = scene.particles.count();
   std::vector<double> f(3 * n, 0.0);
   for (int i = 0; i < n; ++i)
@@ -136,7 +125,7 @@ TEST(SelfContact, VerletListMatchesEveryPairAsParticlesMoveAndBondsBreak) {
 
   auto check = [&](const char* state, std::size_t builds) {
     const auto f = contact_forces(contact, y);
-    const auto reference = brute_force(scene, *model, y);
+    const auto reference = brute_force(scene, c, *model, y);
     const auto d = compare(f, reference);
     std::printf("%-52s builds %zu, largest force %.4e N, largest difference %.2e N\n", state,
                 contact.builds(), d.largest, d.difference);

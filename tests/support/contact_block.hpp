@@ -35,6 +35,35 @@ inline std::string glass_block(double bottom, double end, const std::string& int
       end, integrator, bottom, bottom + 0.1, bottom + 0.07, end, end / 200);
 }
 
+// Two such blocks of separate bodies stacked on the ground plane, the upper one `gap` above the
+// lower one (0: touching as sampled), with self-contact; probes on the upper block's top and
+// bottom layers and the lower block's top layer.
+inline std::string stacked_glass_blocks(double gap, double end, const std::string& integrator) {
+  const double upper = 0.1 + gap;
+  return fmt::format(
+      "name: stacked_glass_blocks\n"
+      "time: {{end: {0}, dt: auto}}\n"
+      "gravity: [0, 0, -9.81]\n"
+      "integrator: {1}\n"
+      "contact: {{self: true}}\n"
+      "bodies:\n"
+      "  - name: lower\n"
+      "    geometry: {{box: {{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}}}\n"
+      "    resolution: 0.05\n"
+      "    material: {{density: 2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\n"
+      "  - name: upper\n"
+      "    geometry: {{box: {{min: [0, 0, {2}], max: [0.1, 0.1, {3}]}}}}\n"
+      "    resolution: 0.05\n"
+      "    material: {{density: 2200, bulk_modulus: 3.3e10, shear_modulus: 2.0e10}}\n"
+      "colliders:\n  - {{plane: {{point: [0, 0, 0], normal: [0, 0, 1]}}}}\n"
+      "probes:\n"
+      "  - {{name: top, region: {{box: {{min: [-1, -1, {4}], max: [1, 1, 1]}}}}}}\n"
+      "  - {{name: upper_bottom, region: {{box: {{min: [-1, -1, {2}], max: [1, 1, {5}]}}}}}}\n"
+      "  - {{name: lower_top, region: {{box: {{min: [-1, -1, 0.07], max: [1, 1, 0.1]}}}}}}\n"
+      "output: {{every: {0}, probe_every: {6}}}\n",
+      end, integrator, upper, upper + 0.1, upper + 0.07, upper + 0.03, end / 200);
+}
+
 // An integrator as a scene's `integrator:` value and its step.
 struct Integrator {
   std::string name, yaml, dt;  // dt: auto, or a fixed step
