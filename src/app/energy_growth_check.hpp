@@ -1,6 +1,7 @@
 #pragma once
 // Stops the run (status unstable) when energy that no load put in exceeds
-// integrator.energy_growth_limit of the energy put in (|E(0)| + Σ |work|) for 10 steps in a row: K
+// integrator.energy_growth_limit of the energy put in (|E(0)| + Σ |work|) for 10 steps in a row,
+// or for the last two steps or more of the run (a short run is judged at its end): K
 // + losses − (E(0) + work) bounds the ledger's balance from below because Π ≥ 0, so it needs no
 // energy evaluation. A check of the run loop (app/observer.hpp), after the ledger's booking.
 #include "app/energy_ledger.hpp"

@@ -276,7 +276,8 @@ output: {every: 0.1, probe_every: 0.002}
 
 // Symplectic Euler at 3× the stable estimate (allowed on purpose) on the glass bar: the
 // energy-growth check stops the run while every written number is still finite, with status
-// `unstable` and a message that names a stable dt.
+// `unstable` and a message that names a stable dt. A run too short for that stop is stopped at
+// its end.
 TEST(Stability, ExplicitAtThreeTimesTheStableStepIsStoppedEarly) {
   const double stable = stable_step(kGlassBar);
   const CaseRun run =
@@ -292,6 +293,20 @@ TEST(Stability, ExplicitAtThreeTimesTheStableStepIsStoppedEarly) {
   const double planned = std::ceil(0.005 / (3 * stable));
   EXPECT_LT(run.number("steps"), planned);
   EXPECT_FALSE(finite_rows(run.out / "probes.csv").empty());
+
+  // The same run ended 5 steps before that stop: its energy has grown for the last 5 of its
+  // steps, fewer than the 10 in a row that stop a run on its way, and it is judged at its end:
+  // stopped, never completed.
+  const long stopped_at = static_cast<long>(run.number("steps"));
+  ASSERT_GT(stopped_at, 10);
+  const long steps = stopped_at - 5;
+  const CaseRun shorter = run_case(
+      "explicit_3x_stable_step_short", "integrator: {type: symplectic_euler}\n" + kGlassBar,
+      fmt::format("--set time.dt={0} --set time.end={1} --set output.every={1} "
+                  "--set output.probe_every={1} --set integrator.allow_unstable_dt=true",
+                  3 * stable, 3 * stable * steps));
+  EXPECT_EQ(shorter.status(), "unstable") << shorter.outcome.output;
+  EXPECT_EQ(shorter.number("steps"), steps) << shorter.outcome.output;
 }
 
 // Newton limited on the crushed block at 25× the explicit limit. Limited to 2 iterations over
