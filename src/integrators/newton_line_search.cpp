@@ -26,6 +26,7 @@ PetscErrorCode potential_line_search(SNESLineSearch search, void* context) {
   PetscCall(SNESLineSearchGetVecs(search, &x, &f, &y, &w, &g));
   PetscCall(SNESLineSearchGetNorms(search, &xnorm, &fnorm, &ynorm));
   const double bound = c->max_step ? c->max_step(x, y) : 1.0;
+  c->last_bounded = bound < 1;
   if (bound < 1) ++c->bounded;
   if (bound == 1 && c->accept_unevaluated && c->accept_unevaluated(y)) {
     ++c->unevaluated;

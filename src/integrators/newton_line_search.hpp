@@ -25,7 +25,8 @@ struct PotentialLineSearch {
   long unevaluated = 0;  // steps so taken
   // The largest λ ≤ 1 such that x − λy stays within the potentials' bounds (1 without any).
   std::function<double(Vec x, Vec y)> max_step;
-  long bounded = 0;  // steps cut to that bound
+  long bounded = 0;           // steps cut to that bound
+  bool last_bounded = false;  // whether the last step was
 };
 
 // The SNESLineSearchUserFunc; `context` is a PotentialLineSearch.

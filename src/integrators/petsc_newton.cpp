@@ -394,7 +394,12 @@ PetscErrorCode converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snor
   auto* s = static_cast<Solver*>(context);
   if (*reason == SNES_CONVERGED_ITERATING && it > 0 && fnorm <= s->floor)
     *reason = SNES_CONVERGED_FNORM_ABS;
-  if (s->error_test) return guarded(s, [&] { newton_error_test(*s, snes, it, reason); });
+  if (s->error_test) PetscCall(guarded(s, [&] { newton_error_test(*s, snes, it, reason); }));
+  // A short last update is no convergence where the potentials' bound cut it (a particle held
+  // at a collider's surface by the line search while the solution lies beyond): a stall, which
+  // the step's fallback (halving) takes up.
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && s->line_search.last_bounded)
+    *reason = SNES_DIVERGED_LINE_SEARCH;
   return 0;
 }
 
@@ -779,6 +784,14 @@ std::string PetscNewton::attempt(Dynamics& dynamics, State& state, double dt) {
           "tangent is not positive definite there; use integrator.tangent: auto or projected",
           scheme_name(settings_.scheme), state.time, tangent_name(settings_.tangent));
     }
+    if (reason < 0 && s.line_search.last_bounded)
+      return fmt::format(
+          "petsc_newton ({}): Newton stalled in the step from t = {:.6g} s with dt = {:.3g} s: "
+          "its last update was cut to keep particles out of a collider (or within self-contact's "
+          "skin) while the solution lies beyond, after {} iterations. The contact penalty is too "
+          "soft to stop this impact within a particle's radius at this step: raise "
+          "contact.stiffness or try a smaller time.dt",
+          scheme_name(settings_.scheme), state.time, dt, iterations);
     if (reason < 0)
       return fmt::format(
           "petsc_newton ({}): Newton did not converge in the step from t = {:.6g} s with dt = "
