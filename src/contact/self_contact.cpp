@@ -198,17 +198,19 @@ void SelfContact::split_rows() {
   split_revision_ = model_.revision();
 }
 
-bool SelfContact::update_list(const double* y) {
-  const int n = static_cast<int>(radius_.size());
-  // One pass for both: whether y is finite, and how far the particles moved since the list was
-  // built, measured so that moving all together does not count. A pair's separation changed by
-  // |Δ_i − Δ_j| = |(Δ_i − u) − (Δ_j − u)| ≤ 2 max_k |Δ_k − u| for any common vector u, so the
-  // list is exact while max_k |Δ_k − u| ≤ skin/2 for some u: u = 0 (max_k |Δ_k|), or u the
-  // centre of the box around the displacements Δ_k (at most half its diagonal from each). The
-  // second keeps the list of a body in flight (drop_shatter's falling ball moves more than
-  // skin/2 at every step).
-  const bool have_list = !built_at_.empty();
-  const double* built = built_at_.data();
+namespace {
+
+// How far n particles moved by Δ_k = to_k − from_k (Δ_k = to_k where from is null), not counting
+// what they moved together: a pair's separation changed by |Δ_i − Δ_j| = |(Δ_i − u) − (Δ_j − u)|
+// ≤ 2 max_k |Δ_k − u| for any common vector u. Returned: max_k |Δ_k − u|² for the better of u = 0
+// (max_k |Δ_k|) and u the centre of the box around the Δ_k (at most half its diagonal from each),
+// and whether `to` is finite. The second u keeps a body in flight from counting (drop_shatter's
+// falling ball moves more than skin/2 at every step).
+struct Spread {
+  bool finite;
+  double squared;
+};
+Spread spread(int n, const double* to, const double* from) {
   bool finite = true;
   double moved = 0;  // max_k |Δ_k|²
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -218,21 +220,30 @@ bool SelfContact::update_list(const double* y) {
   for (int i = 0; i < n; ++i) {
     double d2 = 0;
     for (int k = 0; k < 3; ++k) {
-      finite = finite && std::isfinite(y[3 * i + k]);
-      if (have_list) {
-        const double d = y[3 * i + k] - built[3 * i + k];
-        d2 += d * d;
-        lo[k] = std::min(lo[k], d);
-        hi[k] = std::max(hi[k], d);
-      }
+      finite = finite && std::isfinite(to[3 * i + k]);
+      const double d = from ? to[3 * i + k] - from[3 * i + k] : to[3 * i + k];
+      d2 += d * d;
+      lo[k] = std::min(lo[k], d);
+      hi[k] = std::max(hi[k], d);
     }
     moved = std::max(moved, d2);
   }
-  // A non-finite state has no geometry to search; the run loop stops on it after this step.
-  if (!finite) return false;
   double half_diagonal = 0;  // squared
   for (int k = 0; k < 3; ++k) half_diagonal += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
-  if (!have_list || std::min(moved, half_diagonal) > 0.25 * skin_ * skin_)
+  return {finite, std::min(moved, half_diagonal)};
+}
+
+}  // namespace
+
+bool SelfContact::update_list(const double* y) {
+  const int n = static_cast<int>(radius_.size());
+  // The list is exact while the particles moved by at most skin/2 from a common motion since it
+  // was built (spread above).
+  const bool have_list = !built_at_.empty();
+  const Spread moved = spread(n, y, have_list ? built_at_.data() : y);
+  // A non-finite state has no geometry to search; the run loop stops on it after this step.
+  if (!moved.finite) return false;
+  if (!have_list || moved.squared > 0.25 * skin_ * skin_)
     build_list(y);
   else if (model_.revision() != split_revision_)
     split_rows();
@@ -311,24 +322,8 @@ void SelfContact::add_coupling(const double* z, const double* v, double* out) co
 }
 
 double SelfContact::max_step(const double* dz) const {
-  const int n = static_cast<int>(radius_.size());
-  // The update's largest relative motion, measured as update_list measures it.
-  double moved = 0;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
-#pragma omp parallel for schedule(static) reduction(max : moved, hi[:3]) reduction(min : lo[:3])
-  for (int i = 0; i < n; ++i) {
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      d2 += dz[3 * i + k] * dz[3 * i + k];
-      lo[k] = std::min(lo[k], dz[3 * i + k]);
-      hi[k] = std::max(hi[k], dz[3 * i + k]);
-    }
-    moved = std::max(moved, d2);
-  }
-  double half_diagonal = 0;
-  for (int k = 0; k < 3; ++k) half_diagonal += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
-  const double largest = std::sqrt(std::min(moved, half_diagonal));
+  // the update's motion from a common one, as update_list measures it
+  const double largest = std::sqrt(spread(static_cast<int>(radius_.size()), dz, nullptr).squared);
   return largest > 0.5 * skin_ ? 0.5 * skin_ / largest : 1.0;
 }
 

@@ -36,9 +36,11 @@ class SelfContactLoad : public Load, public LoadPotential {
 #pragma omp parallel for reduction(+ : sum) schedule(static)
     for (std::size_t k = 0; k < n; ++k)
       sum += (start_force_[k] + force_[k]) * (step.after[k] - step.before[k]);
-    start_force_ = force_;
-    start_point_ = point_;
+    // F(y_{n+1}) becomes the next step's F(y_n); force_ then holds no point
+    std::swap(start_force_, force_);
+    std::swap(start_point_, point_);
     start_revision_ = revision_;
+    point_.clear();
     return -0.5 * sum;
   }
   std::string not_distributable() const override { return "contact.self"; }

@@ -16,6 +16,7 @@
 
 #include "contact/colliders.hpp"
 #include "core/error.hpp"
+#include "support/potential_evaluation.hpp"
 #include "support/scenes.hpp"
 
 namespace fissure {
@@ -67,15 +68,8 @@ Points crossing(const Scene& scene) {
   return p;
 }
 
-struct Evaluation {
-  double energy;
-  std::vector<double> gradient, blocks;
-};
-Evaluation evaluate(Colliders& c, const std::vector<double>& z) {
-  Evaluation e{0, std::vector<double>(z.size(), 0.0), std::vector<double>(3 * z.size(), 0.0)};
-  e.energy = c.potential(z.data(), e.gradient.data(), e.blocks.data());
-  return e;
-}
+using test::evaluate;
+using test::Evaluation;
 
 // Checks the gradient and Hessian blocks at the pressed end point against central differences
 // along each particle's axes; `exact` whether the blocks are the whole Hessian; `secant` the

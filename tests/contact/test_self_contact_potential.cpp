@@ -20,6 +20,7 @@
 #include "model/model.hpp"
 #include "scene/config.hpp"
 #include "support/contact_sizes.hpp"
+#include "support/potential_evaluation.hpp"
 
 namespace fissure {
 namespace {
@@ -32,15 +33,8 @@ const char* kTwoBlocks =
     "  - geometry: {box: {min: [0.096, 0, 0], max: [0.196, 0.1, 0.1]}}\n    resolution: 0.02\n"
     "    material: {density: 1000, bulk_modulus: 2.0e6, shear_modulus: 1.0e6}\n";
 
-struct Evaluation {
-  double energy;
-  std::vector<double> gradient, blocks;
-};
-Evaluation evaluate(SelfContact& c, const std::vector<double>& z) {
-  Evaluation e{0, std::vector<double>(z.size(), 0.0), std::vector<double>(3 * z.size(), 0.0)};
-  e.energy = c.potential(z.data(), e.gradient.data(), e.blocks.data());
-  return e;
-}
+using test::evaluate;
+using test::Evaluation;
 
 // The state: the second block pushed 2 mm further into the first, and every particle moved by up
 // to 1 mm in a random direction.

@@ -100,6 +100,28 @@ inline BlockRun run_block(const std::string& yaml, const Integrator& integrator)
   return r;
 }
 
+// Per probe row, the energy no entry of the ledger accounts for (docs/output.md, "Energy
+// ledger"): K + Π + U + the losses − (E(0) + the works) [J], positive where energy was created.
+inline std::vector<double> ledger_excess(const BlockRun& r) {
+  const auto column = [&](const char* name) -> const std::vector<double>& {
+    return r.probes.at(name);
+  };
+  const auto& k = column("kinetic_energy");
+  std::vector<double> excess(k.size());
+  double initial = 0;
+  for (std::size_t row = 0; row < k.size(); ++row) {
+    double held = 0, put_in = 0;
+    for (const char* name : {"kinetic_energy", "elastic_energy", "stored_energy", "damping_loss",
+                             "contact_loss", "plastic_dissipation", "fracture_release"})
+      held += column(name)[row];
+    for (const char* name : {"gravity_work", "constraint_work", "collider_work"})
+      put_in += column(name)[row];
+    if (row == 0) initial = held - put_in;
+    excess[row] = held - put_in - initial;
+  }
+  return excess;
+}
+
 // The largest |value|.
 inline double largest(const std::vector<double>& values) {
   double m = 0;
