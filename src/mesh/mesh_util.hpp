@@ -1,6 +1,7 @@
 #pragma once
 // Internals shared by the files of the mesh module: parsing helpers, surface checks and the
 // TetGen wrapper. Not for use outside src/mesh.
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,8 +56,13 @@ void refine_surface(SurfaceMesh& surface, double max_edge);
 TetMesh tetgen_quality_mesh(const SurfaceMesh& surface, double max_volume, const std::string& file,
                             bool check_intersections);
 
-// tetrahedralize_surface for surfaces valid by construction: no self-intersection check.
-TetMesh tetrahedralize_primitive(const SurfaceMesh& surface, double edge_length);
+// tetrahedralize_surface for surfaces valid by construction: no self-intersection check. The
+// surface is given at the origin (a box's lowest corner, a sphere's centre, a cylinder's first
+// end) and the mesh moved by `origin` after meshing, so that the mesh of a primitive does not
+// depend on where it lies (TetGen's choices among a box's regular, cospherical points follow the
+// last bits of the coordinates: 857 particles at the origin, 846 a kilometre away).
+TetMesh tetrahedralize_primitive(const SurfaceMesh& surface, double edge_length,
+                                 const std::array<double, 3>& origin);
 
 // Throws if a body of `volume` and surface `area` meshed at `edge_length` would need an absurd
 // number of tets (thin bodies still need a layer of λ-sized tets over their surface).

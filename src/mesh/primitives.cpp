@@ -249,7 +249,8 @@ TetMesh tetrahedralize_box(const Vec3& min, const Vec3& max, double edge_length)
   mesh_detail::check_tet_budget(size[0] * size[1] * size[2],
                                 2.0 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0]),
                                 edge_length, "");
-  return mesh_detail::tetrahedralize_primitive(box_surface(min, max, edge_length), edge_length);
+  return mesh_detail::tetrahedralize_primitive(box_surface({0, 0, 0}, size, edge_length),
+                                               edge_length, min);
 }
 
 TetMesh tetrahedralize_sphere(const Vec3& center, double radius, double edge_length) {
@@ -260,8 +261,8 @@ TetMesh tetrahedralize_sphere(const Vec3& center, double radius, double edge_len
   }
   mesh_detail::check_tet_budget(4.0 / 3.0 * std::numbers::pi * radius * radius * radius,
                                 4.0 * std::numbers::pi * radius * radius, edge_length, "");
-  return mesh_detail::tetrahedralize_primitive(sphere_surface(center, radius, edge_length),
-                                               edge_length);
+  return mesh_detail::tetrahedralize_primitive(sphere_surface({0, 0, 0}, radius, edge_length),
+                                               edge_length, center);
 }
 
 TetMesh tetrahedralize_cylinder(const Vec3& p0, const Vec3& p1, double radius, double edge_length) {
@@ -277,8 +278,9 @@ TetMesh tetrahedralize_cylinder(const Vec3& p0, const Vec3& p1, double radius, d
   mesh_detail::check_tet_budget(std::numbers::pi * radius * radius * length,
                                 2.0 * std::numbers::pi * radius * (radius + length), edge_length,
                                 "");
-  return mesh_detail::tetrahedralize_primitive(cylinder_surface(p0, p1, radius, edge_length),
-                                               edge_length);
+  const Vec3 axis{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  return mesh_detail::tetrahedralize_primitive(
+      cylinder_surface({0, 0, 0}, axis, radius, edge_length), edge_length, p0);
 }
 
 }  // namespace fissure

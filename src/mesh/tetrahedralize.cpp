@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -78,6 +79,21 @@ double bounding_box_volume(const std::vector<double>& vertices) {
   return volume;
 }
 
+// The lowest corner of the vertices' bounding box.
+std::array<double, 3> lowest_corner(const std::vector<double>& vertices) {
+  std::array<double, 3> corner{};
+  for (int axis = 0; axis < 3; ++axis) {
+    corner[axis] = vertices[axis];
+    for (size_t i = axis; i < vertices.size(); i += 3)
+      corner[axis] = std::min(corner[axis], vertices[i]);
+  }
+  return corner;
+}
+
+void move(std::vector<double>& vertices, const std::array<double, 3>& by) {
+  for (size_t i = 0; i < vertices.size(); ++i) vertices[i] += by[i % 3];
+}
+
 TetMesh mesh_surface(const SurfaceMesh& surface, double edge_length, const std::string& source_file,
                      bool check_intersections) {
   if (!(edge_length > 0.0) || !std::isfinite(edge_length)) {
@@ -102,13 +118,24 @@ TetMesh mesh_surface(const SurfaceMesh& surface, double edge_length, const std::
 
 }  // namespace
 
+// A surface read from a file is meshed with its bounding box's lowest corner at the origin, as the
+// primitives are (tetrahedralize_primitive).
 TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double edge_length,
                                const std::string& source_file) {
-  return mesh_surface(surface, edge_length, source_file, true);
+  mesh_detail::validate_surface(surface, source_file);
+  const std::array<double, 3> corner = lowest_corner(surface.vertices);
+  SurfaceMesh local = surface;
+  move(local.vertices, {-corner[0], -corner[1], -corner[2]});
+  TetMesh mesh = mesh_surface(local, edge_length, source_file, true);
+  move(mesh.vertices, corner);
+  return mesh;
 }
 
-TetMesh mesh_detail::tetrahedralize_primitive(const SurfaceMesh& surface, double edge_length) {
-  return mesh_surface(surface, edge_length, "", false);
+TetMesh mesh_detail::tetrahedralize_primitive(const SurfaceMesh& surface, double edge_length,
+                                              const std::array<double, 3>& origin) {
+  TetMesh mesh = mesh_surface(surface, edge_length, "", false);
+  move(mesh.vertices, origin);
+  return mesh;
 }
 
 }  // namespace fissure
