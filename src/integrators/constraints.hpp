@@ -16,7 +16,11 @@ class Constraints {
   // The part of the acceleration `a` holds: all of it, or one half of a split right-hand side
   // (the reaction is their sum).
   enum class Part { whole, implicit, explicit_ };
-  // Zeroes a where a constraint holds the particle at time t and keeps the reaction −m a_free.
+  // Sets a where a constraint holds the particle at time t to the acceleration of its prescribed
+  // motion (ω × (ω × r) for a turning one, r its prescribed offset from the centre; 0 otherwise,
+  // and 0 in the explicit part of a split right-hand side) and keeps the reaction −m a_free
+  // (the prescribed acceleration, normal to the velocity, does no work). An integrator that
+  // integrates a held particle's acceleration (ARKODE) then follows a turning end, not its tangent.
   void hold(double t, double* a, Part part);
   // For integrators that hold particles through their own equations (petsc_newton): the reactions
   // they computed, 3N (read on held particles only).
@@ -27,6 +31,11 @@ class Constraints {
   void constrain_velocity(double t, double* v) const;
   // The particles a constraint holds at time t and the velocity each one moves at.
   void held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const;
+  // The particles a constraint holds at time t and how far each moves from its position in y (3N)
+  // over the next tau seconds along its prescribed motion, exactly: v τ + (R(ωτ) − I)(y − c − v t)
+  // for a turning one (c its centre), v τ otherwise.
+  void held_motion(double t, double tau, const double* y, std::vector<int>& particles,
+                   std::vector<Vec3>& displacements) const;
 
  private:
   // The constraint holding particle held_particles_[k] at time t: the last one in config order
@@ -40,6 +49,9 @@ class Constraints {
     bool rotates;
   };
   void set_motions(double t) const;
+  // Its offset from the centre, R(ωt)(x0 − c), for held particle held_particles_[k] under
+  // motions_[c] (rotating).
+  Vec3 held_offset(std::size_t k, int c) const;
   // Velocity motions_[c] gives held particle held_particles_[k]: the constraint's velocity, plus
   // ω × R(ωt)(x0 − centre) for a rotating one (x0 the reference position).
   Vec3 held_velocity(std::size_t k, int c) const;

@@ -63,6 +63,11 @@ class Dynamics {
   void held(double t, std::vector<int>& particles, std::vector<Vec3>& velocities) const {
     constraints_.held(t, particles, velocities);
   }
+  // Constraints::held_motion.
+  void held_motion(double t, double tau, const double* y, std::vector<int>& particles,
+                   std::vector<Vec3>& displacements) const {
+    constraints_.held_motion(t, tau, y, particles, displacements);
+  }
   const Constraints& constraints() const { return constraints_; }
   Model& model() { return model_; }
   const Model& model() const { return model_; }

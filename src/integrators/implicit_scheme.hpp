@@ -42,9 +42,12 @@ class ImplicitScheme {
   // plus the previous stage's acceleration held: its error is O(h³), where the previous stage's
   // minimiser's is O(h).
   std::vector<double> guess(const State& state, double h) const;
-  // z of a particle that moves at velocity u through the step (held by a constraint), for the
-  // stage last predicted.
-  double held_value(double y, double u, double h) const { return y + held_fraction_ * h * u; }
+  // z of a particle held by a constraint, for the stage last predicted: y + chord Δ(time h),
+  // Δ(τ) its prescribed displacement over τ from the step's start. The stage's positions lie at
+  // time c_i h (an SDIRK stage; 1 for backward Euler and Newmark); generalized-α's z =
+  // y_{n+1−α_f} is the chord's point (1 − α_f) of the way to y_{n+1}.
+  double held_time() const { return kind_ == Kind::newmark_alpha ? 1.0 : held_fraction_; }
+  double held_chord() const { return kind_ == Kind::newmark_alpha ? held_fraction_ : 1.0; }
   // Where in the step the stage's positions are taken, over h (1 for backward Euler, 1 − α_f
   // for Newmark and generalized-α, c_i for an SDIRK stage; 0 for static, which has no time).
   double stage_fraction() const { return is_static() ? 0.0 : held_fraction_; }
@@ -101,7 +104,7 @@ class ImplicitScheme {
   double alpha_m_ = 0, alpha_f_ = 0, beta_ = 0.25, gamma_ = 0.5;
   double inertia_ = 0;
   double potential_weight_ = 1;
-  double held_fraction_ = 1;  // z − y of a held particle over h u: (1 − α_f), or c_i of a stage
+  double held_fraction_ = 1;  // where the stage lies in the step, over h: 1 − α_f, or c_i
   std::vector<double> target_;
   // SDIRK: the tableau, the stage being solved, and per stage i its velocity V_i and
   // acceleration Ȧ_i; Ŷ and V̂ of the stage being solved (the explicit part of its sums).

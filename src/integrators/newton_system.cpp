@@ -71,13 +71,14 @@ std::vector<double> NewtonSystem::begin_step(const ImplicitScheme& scheme, const
   std::vector<double> stay = state.position;
   fixed_.assign(z.size(), 0);
   std::vector<int> held;
-  std::vector<Vec3> velocity;
-  dynamics_.held(state.time, held, velocity);
+  std::vector<Vec3> displacement;
+  dynamics_.held_motion(state.time, scheme.held_time() * h, state.position.data(), held,
+                        displacement);
   for (std::size_t k = 0; k < held.size(); ++k)
     for (int d = 0; d < 3; ++d) {
       const int u = 3 * held[k] + d;
       fixed_[u] = 1;
-      z[u] = stay[u] = scheme.held_value(state.position[u], velocity[k][d], h);
+      z[u] = stay[u] = state.position[u] + scheme.held_chord() * displacement[k][d];
     }
   linearized_ = false;
   dynamics_.share(z.data());  // the guess's ghosts from their own ranks' velocities
