@@ -66,7 +66,7 @@ void EnergyGrowthCheck::after_step(const RunParts& run, const Step& step) {
                 run.dynamics.colliders()
                     ? "; with colliders, an impact far faster than the step is safe with "
                       "petsc_newton's backward_euler and sdirk3, which never gain energy at a "
-                      "contact; its newmark (with friction), alpha, sdirk4 and esdirk4 may, and "
+                      "contact; its newmark (with friction), alpha and esdirk4 may, and "
                       "arkode takes colliders explicitly (docs/integrators.md, \"Contact\")"
                     : "");
   throw StopRun("unstable", fmt::format("{}; {}. Outputs up to this point are kept in {}", what,
