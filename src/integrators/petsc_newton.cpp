@@ -394,10 +394,10 @@ double extent_norm(const Solver& s, SNES snes) {
   const PetscScalar* z;
   petsc_check(VecGetArrayRead(x, &z), "VecGetArrayRead");
   const std::size_t first = s.system.first_unknown(), end = s.system.end_unknown();
-  double mean[3] = {0, 0, 0}, count = 0;
+  double mean[3] = {0, 0, 0};
   for (std::size_t k = first; k < end; ++k) mean[k % 3] += z[k - first];
-  count = s.system.sum_over_ranks(double(end - first) / 3);
-  for (double& m : mean) m = s.system.sum_over_ranks(m) / std::max(count, 1.0);
+  const double particles = s.system.sum_over_ranks(double(end - first) / 3);
+  for (double& m : mean) m = s.system.sum_over_ranks(m) / std::max(particles, 1.0);
   double sum = 0;
   for (std::size_t k = first; k < end; ++k) {
     const double d = z[k - first] - mean[k % 3];

@@ -66,28 +66,19 @@ double surface_area(const SurfaceMesh& surface) {
   return area;
 }
 
-double bounding_box_volume(const std::vector<double>& vertices) {
-  double volume = 1.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    double lo = vertices[axis], hi = vertices[axis];
-    for (size_t i = axis; i < vertices.size(); i += 3) {
-      lo = std::min(lo, vertices[i]);
-      hi = std::max(hi, vertices[i]);
-    }
-    volume *= hi - lo;
-  }
-  return volume;
-}
+// The vertices' bounding box (at least one vertex).
+struct BoundingBox {
+  std::array<double, 3> lo, hi;
+  double volume() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+};
 
-// The lowest corner of the vertices' bounding box.
-std::array<double, 3> lowest_corner(const std::vector<double>& vertices) {
-  std::array<double, 3> corner{};
-  for (int axis = 0; axis < 3; ++axis) {
-    corner[axis] = vertices[axis];
-    for (size_t i = axis; i < vertices.size(); i += 3)
-      corner[axis] = std::min(corner[axis], vertices[i]);
+BoundingBox bounding_box(const std::vector<double>& vertices) {
+  BoundingBox box{{vertices[0], vertices[1], vertices[2]}, {vertices[0], vertices[1], vertices[2]}};
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    box.lo[i % 3] = std::min(box.lo[i % 3], vertices[i]);
+    box.hi[i % 3] = std::max(box.hi[i % 3], vertices[i]);
   }
-  return corner;
+  return box;
 }
 
 void move(std::vector<double>& vertices, const std::array<double, 3>& by) {
@@ -105,7 +96,7 @@ TetMesh mesh_surface(const SurfaceMesh& surface, double edge_length, const std::
   mesh_detail::weld_vertices(closed);
   mesh_detail::validate_surface(closed, source_file);
   check_closed(closed, source_file);
-  const double box_volume = bounding_box_volume(closed.vertices);
+  const double box_volume = bounding_box(closed.vertices).volume();
   // TetGen asserts (aborts) on input without extent in some axis.
   if (!(box_volume > 0.0)) {
     throw InputError(source_file, "", "surface is flat: it encloses no volume");
@@ -123,7 +114,7 @@ TetMesh mesh_surface(const SurfaceMesh& surface, double edge_length, const std::
 TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double edge_length,
                                const std::string& source_file) {
   mesh_detail::validate_surface(surface, source_file);
-  const std::array<double, 3> corner = lowest_corner(surface.vertices);
+  const std::array<double, 3> corner = bounding_box(surface.vertices).lo;
   SurfaceMesh local = surface;
   move(local.vertices, {-corner[0], -corner[1], -corner[2]});
   TetMesh mesh = mesh_surface(local, edge_length, source_file, true);
